@@ -1,0 +1,42 @@
+// The Newton–Euler right-hand side Ẏ = f(Y, u) of the state-space form:
+//   ẋ = v = P/M,   q̇ = ½ [0, ω] ⊗ q,   Ṗ = F,   L̇ = τ,   with ω = R I_Bcm_B⁻¹ Rᵀ L.
+// (Baraff & Witkin, "Physically Based Modeling", rigid body dynamics, eqs. 2-43 and 4-2.)
+#pragma once
+
+#include <Eigen/Core>
+
+#include "rigid_body_sim/forces.hpp"
+#include "rigid_body_sim/kinematics.hpp"
+#include "rigid_body_sim/mass_properties.hpp"
+#include "rigid_body_sim/state.hpp"
+
+namespace rigid_body {
+
+/// The constant description of one body: its mass properties and the force models acting on it.
+struct Model {
+  MassProperties mass;
+  ForceModel forces;
+};
+
+/// Ẏ, with the quaternion rate as Eigen's coefficient order (x, y, z, w).
+struct Derivative {
+  Eigen::Vector3d p_dot;  ///< ẋ [m/s]
+  Eigen::Vector4d q_dot;  ///< q̇ [1/s], coefficients (x, y, z, w)
+  Eigen::Vector3d P_dot;  ///< Ṗ = F [N]
+  Eigen::Vector3d L_dot;  ///< L̇ = τ [N m]
+};
+
+/// Total wrench about the centre of mass in world axes: the applied input (world part plus the body part
+/// turned by R), gravity M g, and damping −c v, −c_ω ω.
+Wrench totalWrench(const Model& model, const Motion& motion, const AppliedWrench& input);
+
+/// q̇ = ½ [0, ω] ⊗ q for a world-axes ω, as coefficients (x, y, z, w).
+Eigen::Vector4d quaternionRate(const Eigen::Vector3d& w_WB_W, const Eigen::Quaterniond& q_WB);
+
+/// Ẏ = f(Y, u).
+Derivative derivative(const Model& model, const State& state, const AppliedWrench& input);
+
+/// Y + h Ẏ on every component (no renormalisation of q: a stage state of a Runge–Kutta method), t + h.
+State addScaled(const State& state, const Derivative& rate, double h);
+
+}  // namespace rigid_body

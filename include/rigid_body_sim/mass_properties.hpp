@@ -1,0 +1,50 @@
+// Mass and inertia of one rigid body about its centre of mass.
+#pragma once
+
+#include <Eigen/Core>
+#include <stdexcept>
+#include <string>
+
+namespace rigid_body {
+
+/// Thrown for mass properties no physical body can have; the message names the quantity and the rule.
+class InvalidMassProperties : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+/// Constant mass properties of a body: mass and inertia about the centre of mass in body axes.
+/// Made only through the factories below, which validate; so a MassProperties always holds
+/// a positive mass and a symmetric positive-definite inertia that satisfies the triangle inequality.
+class MassProperties {
+ public:
+  /// 1 kg with unit inertia 𝟙 kg m^2: a valid body, so that holders can be default-constructed.
+  MassProperties() : MassProperties(1.0, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Ones()) {}
+
+  /// Solid box with edge lengths size = (x, y, z) [m]: I = M/12 diag(y²+z², x²+z², x²+y²).
+  static MassProperties box(double mass, const Eigen::Vector3d& size);
+  /// Solid sphere of radius r [m]: I = 2/5 M r² 𝟙.
+  static MassProperties sphere(double mass, double radius);
+  /// Solid cylinder of radius r and length l [m] along body z: I_xx = I_yy = M(3r² + l²)/12, I_zz = M r²/2.
+  static MassProperties cylinder(double mass, double radius, double length);
+  /// A full inertia tensor about the centre of mass [kg m^2], body axes.
+  static MassProperties fromInertia(double mass, const Eigen::Matrix3d& I_Bcm_B);
+
+  double mass() const { return mass_; }                                 ///< M [kg]
+  double inverseMass() const { return inverse_mass_; }                  ///< 1/M [1/kg]
+  const Eigen::Matrix3d& inertia() const { return I_Bcm_B_; }           ///< I_Bcm_B [kg m^2]
+  const Eigen::Matrix3d& inverseInertia() const { return I_Bcm_B_inv_; }///< I_Bcm_B⁻¹ [1/(kg m^2)]
+  /// Principal moments in ascending order [kg m^2].
+  const Eigen::Vector3d& principalMoments() const { return principal_moments_; }
+
+ private:
+  MassProperties(double mass, const Eigen::Matrix3d& I_Bcm_B, const Eigen::Vector3d& principal_moments);
+
+  double mass_;
+  double inverse_mass_;
+  Eigen::Matrix3d I_Bcm_B_;
+  Eigen::Matrix3d I_Bcm_B_inv_;
+  Eigen::Vector3d principal_moments_;
+};
+
+}  // namespace rigid_body

@@ -1,0 +1,52 @@
+// Messages into core types and the core state into messages. Pure functions: no node, no master.
+#pragma once
+
+#include <geometry_msgs/TransformStamped.h>
+#include <geometry_msgs/Wrench.h>
+#include <nav_msgs/Odometry.h>
+
+#include <Eigen/Geometry>
+#include <string>
+
+#include "rigid_body_sim/RigidBodyState.h"
+#include "rigid_body_sim/dynamics.hpp"
+#include "rigid_body_sim/forces.hpp"
+#include "rigid_body_sim/state.hpp"
+
+namespace rigid_body_ros {
+
+/// How the frame_id of an incoming WrenchStamped is interpreted.
+enum class WrenchFrame {
+  kBody,   ///< empty or the body frame: body axes about the centre of mass, turning with the body
+  kWorld,  ///< the world frame: world axes about the centre of mass
+  kOther,  ///< any other frame: transformed through tf2 into world axes at the frame's origin
+};
+
+WrenchFrame classifyWrenchFrame(const std::string& frame_id, const std::string& world_frame,
+                                const std::string& body_frame);
+
+/// True if all six components are finite.
+bool isFinite(const geometry_msgs::Wrench& wrench);
+
+/// The message's force and torque as they are (no change of axes).
+rigid_body::Wrench toWrench(const geometry_msgs::Wrench& wrench);
+
+/// A wrench given in frame F (force and torque in F's axes, torque about F's origin) in world axes about
+/// the centre of mass: F_W = R_WF F_F, τ_W = R_WF τ_F + (p_WF − p_WB) × F_W.
+rigid_body::Wrench wrenchInWorld(const geometry_msgs::Wrench& wrench_F, const Eigen::Isometry3d& X_WF,
+                                 const Eigen::Vector3d& p_WB);
+
+/// Pose and twist of an Odometry message (REP 105): pose of the body in the world frame, twist (linear
+/// velocity of the origin of the body frame and angular velocity) in the body frame: v_B = Rᵀ v_W, ω_B = Rᵀ ω_W.
+/// Header, frame ids and covariances are the caller's.
+void fillOdometry(const rigid_body::MassProperties& mass, const rigid_body::State& state, nav_msgs::Odometry& odom);
+
+/// Translation and rotation of the world → body transform.
+void fillTransform(const rigid_body::State& state, geometry_msgs::TransformStamped& transform);
+
+/// Every field of RigidBodyState but the header and child_frame_id. `input` is the commanded wrench,
+/// reported in world axes at the current orientation.
+void fillStateMessage(const rigid_body::Model& model, const rigid_body::State& state,
+                      const rigid_body::AppliedWrench& input, rigid_body_sim::RigidBodyState& message);
+
+}  // namespace rigid_body_ros

@@ -1,0 +1,59 @@
+// The node's private parameters, read in one pass into a plain config and validated before anything
+// else exists. Every failure is one line that names the parameter, the value and what is allowed.
+#pragma once
+
+#include <xmlrpcpp/XmlRpcValue.h>
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "rigid_body_sim/dynamics.hpp"
+#include "rigid_body_sim/integrators.hpp"
+#include "rigid_body_sim/state.hpp"
+
+namespace ros {
+class NodeHandle;
+}
+
+namespace rigid_body_ros {
+
+/// An invalid parameter; what() is the whole message, e.g.
+/// "parameter ~mass = -1: must be a finite number > 0 [kg]".
+class ParameterError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Everything the node needs, with the defaults of the README's parameter table.
+struct NodeConfig {
+  double rate = 100.0;  ///< timer and publish rate [Hz]
+  double dt = 0.001;    ///< fixed physics step [s]
+  rigid_body::IntegratorType integrator = rigid_body::IntegratorType::kRk4;
+  std::string world_frame = "world";
+  std::string body_frame = "base_link";
+  std::string shape = "box";                      ///< box | sphere | cylinder, or "inertia" when given directly
+  std::vector<double> size = {0.4, 0.2, 0.1};     ///< shape dimensions [m]
+  rigid_body::Model model;                        ///< mass properties and force models
+  rigid_body::State initial;                      ///< the state at start-up and after reset
+  Eigen::Vector3d initial_linear_velocity_W = Eigen::Vector3d::Zero();   ///< [m/s], world axes
+  Eigen::Vector3d initial_angular_velocity_B = Eigen::Vector3d::Zero();  ///< [rad/s], body axes
+  double wrench_timeout = 0.0;       ///< [s]; 0: a wrench holds until the next one
+  std::int64_t max_substeps = 1000;  ///< steps one tick may integrate; the rest is dropped and counted
+  bool publish_tf = true;            ///< broadcast world_frame → body_frame
+  std::vector<std::string> unknown_parameters;  ///< names set but not known (typos), for a warning
+
+  /// One line with the effective values, for the start-up log.
+  std::string describe() const;
+};
+
+/// Parses and validates the private namespace given as an XmlRpc struct (an invalid, i.e. unset, value
+/// means "all defaults"). Throws ParameterError on the first invalid parameter. Names the node does not
+/// know (e.g. "mas", "initial/postion") go to unknown_parameters.
+NodeConfig parseConfig(const XmlRpc::XmlRpcValue& params);
+
+/// Reads the private namespace of `private_nh` and parses it.
+NodeConfig loadConfig(const ros::NodeHandle& private_nh);
+
+}  // namespace rigid_body_ros

@@ -1,0 +1,20 @@
+// Quaternion helpers shared by the integrators and the references.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace rigid_body {
+
+/// exp of a rotation vector: the unit quaternion (cos(|v|/2), sin(|v|/2) v/|v|), a rotation by |v| [rad]
+/// about v/|v|. Exact for v = 0 and free of NaN for tiny |v| (Taylor series of sin(θ/2)/θ below a guard).
+Eigen::Quaterniond quaternionExp(const Eigen::Vector3d& rotation_vector);
+
+/// The rotation vector of a unit quaternion (inverse of quaternionExp), angle in [0, π].
+Eigen::Vector3d quaternionLog(const Eigen::Quaterniond& q);
+
+/// Angle [rad] of the rotation between two orientations: θ = 2 atan2(|vec(a⁻¹b)|, |w(a⁻¹b)|),
+/// the orientation error metric of shared/REFERENCES.md §3.2. In [0, π].
+double rotationAngleBetween(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b);
+
+}  // namespace rigid_body

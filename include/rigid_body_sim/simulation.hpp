@@ -1,0 +1,66 @@
+// One body advanced in fixed steps against an external clock: the part of the node's timer loop that
+// needs no ROS, so it is tested with explicit times.
+#pragma once
+
+#include <cstdint>
+
+#include "rigid_body_sim/dynamics.hpp"
+#include "rigid_body_sim/integrators.hpp"
+#include "rigid_body_sim/state.hpp"
+
+namespace rigid_body {
+
+/// What one call to Simulation::advanceTo did.
+struct AdvanceResult {
+  std::int64_t steps = 0;    ///< steps integrated
+  std::int64_t dropped = 0;  ///< steps due but skipped because of the max_substeps cap (time lost)
+  StepStatus status = StepStatus::kOk;  ///< kNonFinite if a step failed; the state is then the last good one
+};
+
+/// Whole steps of length dt that fit into `elapsed` seconds: ⌊elapsed/dt⌋, with a relative guard so that
+/// e.g. 0.03/0.001 = 29.999999999999996 counts as 30.
+std::int64_t wholeStepsIn(double elapsed, double dt);
+
+/// A body, its integrator and the input, advanced on a fixed grid t_k = k·dt of an external clock.
+/// The clock count k only grows (also across reset), so times derived from it strictly increase.
+class Simulation {
+ public:
+  /// dt > 0 [s]; max_substeps ≥ 1 bounds the steps one advanceTo integrates ("Fix your timestep").
+  Simulation(const Model& model, const State& initial, IntegratorType integrator, double dt,
+             std::int64_t max_substeps);
+
+  /// Integrates the whole steps between the last grid point reached and `elapsed` [s] since the start.
+  /// If more than max_substeps are due, the rest is dropped (the body does not move for them) and counted.
+  AdvanceResult advanceTo(double elapsed);
+
+  /// Replaces the input from the next step on.
+  void setInput(const AppliedWrench& input) { input_ = input; }
+  void clearInput() { input_ = AppliedWrench(); }
+  const AppliedWrench& input() const { return input_; }
+
+  /// Back to the initial state with no input; the clock count keeps running.
+  void reset();
+  /// Replaces the state (kept only if finite; returns whether it was).
+  bool setState(const State& state);
+
+  const State& state() const { return state_; }
+  const Model& model() const { return model_; }
+  IntegratorType integratorType() const { return integrator_.type(); }
+  double dt() const { return dt_; }
+  /// Grid points passed since the start, integrated or dropped: the state belongs to time clockSteps()·dt.
+  std::int64_t clockSteps() const { return clock_steps_; }
+  std::int64_t droppedSteps() const { return dropped_steps_; }
+
+ private:
+  Model model_;
+  State initial_;
+  State state_;
+  Integrator integrator_;
+  AppliedWrench input_;
+  double dt_;
+  std::int64_t max_substeps_;
+  std::int64_t clock_steps_ = 0;
+  std::int64_t dropped_steps_ = 0;
+};
+
+}  // namespace rigid_body

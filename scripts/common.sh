@@ -1,0 +1,49 @@
+# Shared by the scripts: paths, the Debian packages the project needs, and the workspace build.
+# Sourced, not run.
+
+PACKAGE_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+WORKSPACE="${RIGID_BODY_SIM_WS:-$PACKAGE_DIR/ws}"
+
+# Debian's ROS 1 lives in /usr; the pyenv python3 on some PATHs lacks catkin_pkg, so /usr/bin comes first.
+export PATH="/usr/bin:/bin:$PATH"
+
+# Everything the package builds, tests and runs with, by Debian package name (rosdep has no index here).
+DEBIAN_PACKAGES=(
+  build-essential cmake
+  ros-core-dev rosbash catkin python3-catkin-pkg python3-rospkg
+  libtf2-ros-dev libtf2-eigen-dev libtf2-geometry-msgs-dev
+  ros-nav-msgs ros-geometry-msgs ros-std-srvs libstd-srvs-dev libnav-msgs-dev libgeometry-msgs-dev
+  python3-rostest librostest-dev python3-rostopic python3-roslaunch
+  python3-nav-msgs python3-geometry-msgs python3-std-msgs python3-std-srvs python3-tf2-msgs python3-tf2-ros
+  libeigen3-dev libgtest-dev libboost-math-dev libbenchmark-dev
+)
+
+# Installs the packages that are missing (apt-get update once, only when something is missing).
+install_dependencies() {
+  local missing=()
+  for package in "${DEBIAN_PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
+  done
+  if [ ${#missing[@]} -eq 0 ]; then
+    return 0
+  fi
+  echo "Installing Debian packages: ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y --no-install-recommends "${missing[@]}"
+}
+
+# Makes the workspace (src/rigid_body_sim links to this checkout) and builds it with catkin_make.
+build_workspace() {
+  mkdir -p "$WORKSPACE/src"
+  ln -sfn "$PACKAGE_DIR" "$WORKSPACE/src/rigid_body_sim"
+  (cd "$WORKSPACE" && catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release "$@")
+}
+
+source_workspace() {
+  # shellcheck disable=SC1091
+  set +u
+  source "$WORKSPACE/devel/setup.bash"
+  set -u 2>/dev/null || true
+}

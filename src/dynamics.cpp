@@ -1,0 +1,42 @@
+#include "rigid_body_sim/dynamics.hpp"
+
+namespace rigid_body {
+
+Wrench totalWrench(const Model& model, const Motion& motion, const AppliedWrench& input) {
+  const ForceModel& forces = model.forces;
+  Wrench total = input.world;
+  total.force += motion.R_WB * input.body.force;
+  total.torque += motion.R_WB * input.body.torque;
+  total.force += model.mass.mass() * forces.gravity_W;
+  total.force -= forces.linear_damping * motion.v_WB_W;
+  total.torque -= forces.angular_damping * motion.w_WB_W;
+  return total;
+}
+
+Eigen::Vector4d quaternionRate(const Eigen::Vector3d& w_WB_W, const Eigen::Quaterniond& q_WB) {
+  const Eigen::Quaterniond omega(0.0, w_WB_W.x(), w_WB_W.y(), w_WB_W.z());
+  return 0.5 * (omega * q_WB).coeffs();
+}
+
+Derivative derivative(const Model& model, const State& state, const AppliedWrench& input) {
+  const Motion motion = motionOf(model.mass, state);
+  const Wrench wrench = totalWrench(model, motion, input);
+  Derivative rate;
+  rate.p_dot = motion.v_WB_W;
+  rate.q_dot = quaternionRate(motion.w_WB_W, state.q_WB);
+  rate.P_dot = wrench.force;
+  rate.L_dot = wrench.torque;
+  return rate;
+}
+
+State addScaled(const State& state, const Derivative& rate, double h) {
+  State next;
+  next.p_WB = state.p_WB + h * rate.p_dot;
+  next.q_WB.coeffs() = state.q_WB.coeffs() + h * rate.q_dot;
+  next.P_W = state.P_W + h * rate.P_dot;
+  next.L_W = state.L_W + h * rate.L_dot;
+  next.t = state.t + h;
+  return next;
+}
+
+}  // namespace rigid_body

@@ -1,0 +1,83 @@
+#include "rigid_body_sim/mass_properties.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <sstream>
+
+namespace rigid_body {
+
+namespace {
+
+// Relative tolerance for symmetry and for the triangle inequality I_max ≤ I_a + I_b. A thin plate sits
+// exactly on the triangle bound, and an inertia typed by hand or computed from a mesh carries rounding.
+constexpr double kRelativeTolerance = 1e-9;
+
+std::string formatNumber(double value) {
+  std::ostringstream out;
+  out.precision(17);
+  out << value;
+  return out.str();
+}
+
+void requirePositiveFinite(double value, const char* what, const char* unit) {
+  if (!std::isfinite(value) || value <= 0.0) {
+    throw InvalidMassProperties(std::string(what) + " must be a finite number > 0 [" + unit + "], got " +
+                                formatNumber(value));
+  }
+}
+
+}  // namespace
+
+MassProperties::MassProperties(double mass, const Eigen::Matrix3d& I_Bcm_B,
+                               const Eigen::Vector3d& principal_moments)
+    : mass_(mass),
+      inverse_mass_(1.0 / mass),
+      I_Bcm_B_(I_Bcm_B),
+      I_Bcm_B_inv_(I_Bcm_B.inverse()),
+      principal_moments_(principal_moments) {}
+
+MassProperties MassProperties::box(double mass, const Eigen::Vector3d& size) {
+  requirePositiveFinite(size.x(), "box size x", "m");
+  requirePositiveFinite(size.y(), "box size y", "m");
+  requirePositiveFinite(size.z(), "box size z", "m");
+  const Eigen::Vector3d s2 = size.cwiseProduct(size);
+  const Eigen::Vector3d diagonal(s2.y() + s2.z(), s2.x() + s2.z(), s2.x() + s2.y());
+  return fromInertia(mass, (mass / 12.0 * diagonal).asDiagonal().toDenseMatrix());
+}
+
+MassProperties MassProperties::sphere(double mass, double radius) {
+  requirePositiveFinite(radius, "sphere radius", "m");
+  return fromInertia(mass, 0.4 * mass * radius * radius * Eigen::Matrix3d::Identity());
+}
+
+MassProperties MassProperties::cylinder(double mass, double radius, double length) {
+  requirePositiveFinite(radius, "cylinder radius", "m");
+  requirePositiveFinite(length, "cylinder length", "m");
+  const double transverse = mass * (3.0 * radius * radius + length * length) / 12.0;
+  const double axial = 0.5 * mass * radius * radius;
+  return fromInertia(mass, Eigen::Vector3d(transverse, transverse, axial).asDiagonal().toDenseMatrix());
+}
+
+MassProperties MassProperties::fromInertia(double mass, const Eigen::Matrix3d& I) {
+  requirePositiveFinite(mass, "mass", "kg");
+  if (!I.allFinite()) throw InvalidMassProperties("inertia must be finite");
+  const double scale = I.cwiseAbs().maxCoeff();
+  if ((I - I.transpose()).cwiseAbs().maxCoeff() > kRelativeTolerance * scale) {
+    throw InvalidMassProperties("inertia must be symmetric");
+  }
+  const Eigen::Matrix3d symmetric = 0.5 * (I + I.transpose());
+  const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(symmetric).eigenvalues();
+  if (!(moments(0) > 0.0)) {
+    throw InvalidMassProperties("inertia must be positive definite, smallest principal moment is " +
+                                formatNumber(moments(0)) + " kg m^2");
+  }
+  // Principal moments of a real mass distribution obey I_max ≤ I_a + I_b (equality for a flat plate).
+  if (moments(2) > (moments(0) + moments(1)) * (1.0 + kRelativeTolerance)) {
+    throw InvalidMassProperties("inertia violates the triangle inequality of principal moments: " +
+                                formatNumber(moments(2)) + " > " + formatNumber(moments(0)) + " + " +
+                                formatNumber(moments(1)) + " kg m^2");
+  }
+  return MassProperties(mass, symmetric, moments);
+}
+
+}  // namespace rigid_body

@@ -1,0 +1,69 @@
+#include "rigid_body_sim/ros/conversions.hpp"
+
+#include <tf2_eigen/tf2_eigen.h>
+
+#include <cmath>
+
+#include "rigid_body_sim/kinematics.hpp"
+
+namespace rigid_body_ros {
+
+WrenchFrame classifyWrenchFrame(const std::string& frame_id, const std::string& world_frame,
+                                const std::string& body_frame) {
+  if (frame_id.empty() || frame_id == body_frame) return WrenchFrame::kBody;
+  if (frame_id == world_frame) return WrenchFrame::kWorld;
+  return WrenchFrame::kOther;
+}
+
+bool isFinite(const geometry_msgs::Wrench& wrench) {
+  return std::isfinite(wrench.force.x) && std::isfinite(wrench.force.y) && std::isfinite(wrench.force.z) &&
+         std::isfinite(wrench.torque.x) && std::isfinite(wrench.torque.y) && std::isfinite(wrench.torque.z);
+}
+
+rigid_body::Wrench toWrench(const geometry_msgs::Wrench& wrench) {
+  rigid_body::Wrench result;
+  tf2::fromMsg(wrench.force, result.force);
+  tf2::fromMsg(wrench.torque, result.torque);
+  return result;
+}
+
+rigid_body::Wrench wrenchInWorld(const geometry_msgs::Wrench& wrench_F, const Eigen::Isometry3d& X_WF,
+                                 const Eigen::Vector3d& p_WB) {
+  const rigid_body::Wrench in_F = toWrench(wrench_F);
+  return rigid_body::wrenchAboutCentreOfMass(X_WF.linear() * in_F.force, X_WF.linear() * in_F.torque,
+                                             X_WF.translation(), p_WB);
+}
+
+void fillOdometry(const rigid_body::MassProperties& mass, const rigid_body::State& state, nav_msgs::Odometry& odom) {
+  const rigid_body::Motion motion = rigid_body::motionOf(mass, state);
+  odom.pose.pose.position = tf2::toMsg(state.p_WB);
+  odom.pose.pose.orientation = tf2::toMsg(state.q_WB);
+  const Eigen::Matrix3d R_BW = motion.R_WB.transpose();
+  tf2::toMsg(Eigen::Vector3d(R_BW * motion.v_WB_W), odom.twist.twist.linear);
+  tf2::toMsg(Eigen::Vector3d(R_BW * motion.w_WB_W), odom.twist.twist.angular);
+}
+
+void fillTransform(const rigid_body::State& state, geometry_msgs::TransformStamped& transform) {
+  transform.transform.translation.x = state.p_WB.x();
+  transform.transform.translation.y = state.p_WB.y();
+  transform.transform.translation.z = state.p_WB.z();
+  transform.transform.rotation = tf2::toMsg(state.q_WB);
+}
+
+void fillStateMessage(const rigid_body::Model& model, const rigid_body::State& state,
+                      const rigid_body::AppliedWrench& input, rigid_body_sim::RigidBodyState& message) {
+  const rigid_body::Motion motion = rigid_body::motionOf(model.mass, state);
+  message.pose.position = tf2::toMsg(state.p_WB);
+  message.pose.orientation = tf2::toMsg(state.q_WB);
+  tf2::toMsg(motion.v_WB_W, message.twist.linear);
+  tf2::toMsg(motion.w_WB_W, message.twist.angular);
+  tf2::toMsg(state.P_W, message.linear_momentum);
+  tf2::toMsg(state.L_W, message.angular_momentum);
+  tf2::toMsg(Eigen::Vector3d(input.world.force + motion.R_WB * input.body.force), message.applied_wrench.force);
+  tf2::toMsg(Eigen::Vector3d(input.world.torque + motion.R_WB * input.body.torque), message.applied_wrench.torque);
+  message.kinetic_energy = rigid_body::kineticEnergy(model.mass, state);
+  message.potential_energy = rigid_body::potentialEnergy(model.mass, model.forces, state);
+  message.quaternion_norm_error = rigid_body::quaternionNormError(state);
+}
+
+}  // namespace rigid_body_ros

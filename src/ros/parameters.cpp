@@ -1,0 +1,275 @@
+#include "rigid_body_sim/ros/parameters.hpp"
+
+#include <ros/node_handle.h>
+#include <ros/param.h>
+
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "rigid_body_sim/kinematics.hpp"
+#include "rigid_body_sim/mass_properties.hpp"
+
+namespace rigid_body_ros {
+
+namespace {
+
+using XmlRpc::XmlRpcValue;
+
+// The largest rate the timer is asked for; beyond it a ROS timer cannot keep its period anyway.
+constexpr double kMaxRate = 10000.0;
+// A hand-typed quaternion such as [0, 0, 0.7071, 0.7071] is accepted and normalised if |q| is this close to 1.
+constexpr double kQuaternionNormTolerance = 1e-3;
+
+const std::set<std::string> kTopLevelNames = {
+    "rate",    "dt",      "integrator", "world_frame",    "body_frame",      "mass",           "shape",
+    "size",    "inertia", "initial",    "gravity",        "linear_damping",  "angular_damping", "wrench_timeout",
+    "max_substeps", "publish_tf"};
+const std::set<std::string> kInitialNames = {"position", "orientation", "linear_velocity", "angular_velocity"};
+
+std::string render(const XmlRpcValue& value) {
+  XmlRpcValue copy = value;  // the XmlRpc accessors are not const
+  std::ostringstream out;
+  out.precision(17);
+  switch (copy.getType()) {
+    case XmlRpcValue::TypeInt:
+      out << static_cast<int>(copy);
+      break;
+    case XmlRpcValue::TypeDouble:
+      out << static_cast<double>(copy);
+      break;
+    case XmlRpcValue::TypeBoolean:
+      out << (static_cast<bool>(copy) ? "true" : "false");
+      break;
+    case XmlRpcValue::TypeString:
+      out << "'" << static_cast<std::string>(copy) << "'";
+      break;
+    case XmlRpcValue::TypeArray:
+      out << "[";
+      for (int i = 0; i < copy.size(); ++i) out << (i ? ", " : "") << render(copy[i]);
+      out << "]";
+      break;
+    case XmlRpcValue::TypeStruct:
+      out << "{...}";
+      break;
+    default:
+      out << "(unset)";
+  }
+  return out.str();
+}
+
+[[noreturn]] void fail(const std::string& name, const XmlRpcValue& value, const std::string& allowed) {
+  throw ParameterError("parameter ~" + name + " = " + render(value) + ": " + allowed);
+}
+
+bool isNumber(const XmlRpcValue& value) {
+  return value.getType() == XmlRpcValue::TypeInt || value.getType() == XmlRpcValue::TypeDouble;
+}
+
+double asNumber(const XmlRpcValue& value) {
+  XmlRpcValue copy = value;
+  return copy.getType() == XmlRpcValue::TypeInt ? static_cast<double>(static_cast<int>(copy))
+                                                : static_cast<double>(copy);
+}
+
+// Looks up a/b/c in nested structs; returns nullptr when it is not set.
+const XmlRpcValue* find(const XmlRpcValue& params, const std::string& name) {
+  const XmlRpcValue* node = &params;
+  std::istringstream path(name);
+  std::string key;
+  while (std::getline(path, key, '/')) {
+    if (node->getType() != XmlRpcValue::TypeStruct || !node->hasMember(key)) return nullptr;
+    node = &(*const_cast<XmlRpcValue*>(node))[key];
+  }
+  return node;
+}
+
+// A number in [low, high] (bounds given as text for the message); `accept` says whether value fits.
+template <typename Accept>
+double readNumber(const XmlRpcValue& params, const std::string& name, double fallback, Accept accept,
+                  const std::string& allowed) {
+  const XmlRpcValue* value = find(params, name);
+  if (!value) return fallback;
+  if (!isNumber(*value)) fail(name, *value, allowed);
+  const double number = asNumber(*value);
+  if (!std::isfinite(number) || !accept(number)) fail(name, *value, allowed);
+  return number;
+}
+
+std::vector<double> readNumbers(const XmlRpcValue& params, const std::string& name, std::vector<double> fallback,
+                                size_t length, const std::string& allowed) {
+  const XmlRpcValue* value = find(params, name);
+  if (!value) return fallback;
+  XmlRpcValue copy = *value;
+  if (copy.getType() != XmlRpcValue::TypeArray || static_cast<size_t>(copy.size()) != length) {
+    fail(name, *value, allowed);
+  }
+  std::vector<double> numbers;
+  for (int i = 0; i < copy.size(); ++i) {
+    if (!isNumber(copy[i]) || !std::isfinite(asNumber(copy[i]))) fail(name, *value, allowed);
+    numbers.push_back(asNumber(copy[i]));
+  }
+  return numbers;
+}
+
+Eigen::Vector3d readVector3(const XmlRpcValue& params, const std::string& name, const std::string& unit) {
+  const std::vector<double> v =
+      readNumbers(params, name, {0.0, 0.0, 0.0}, 3, "must be a list of 3 finite numbers [x, y, z] " + unit);
+  return Eigen::Vector3d(v[0], v[1], v[2]);
+}
+
+std::string readString(const XmlRpcValue& params, const std::string& name, const std::string& fallback,
+                       const std::string& allowed) {
+  const XmlRpcValue* value = find(params, name);
+  if (!value) return fallback;
+  if (value->getType() != XmlRpcValue::TypeString) fail(name, *value, allowed);
+  return static_cast<std::string>(*const_cast<XmlRpcValue*>(value));
+}
+
+std::string readFrame(const XmlRpcValue& params, const std::string& name, const std::string& fallback) {
+  const std::string allowed = "must be a non-empty tf2 frame id without a leading '/'";
+  const std::string frame = readString(params, name, fallback, allowed);
+  if (frame.empty() || frame.front() == '/' || frame.find(' ') != std::string::npos) {
+    fail(name, *find(params, name), allowed);
+  }
+  return frame;
+}
+
+rigid_body::MassProperties readMassProperties(const XmlRpcValue& params, NodeConfig& config) {
+  const double mass = readNumber(params, "mass", 1.0, [](double m) { return m > 0.0; }, "must be a finite number > 0 [kg]");
+  if (find(params, "inertia")) {
+    const std::vector<double> i = readNumbers(params, "inertia", {}, 6,
+                                              "must be a list of 6 finite numbers [ixx, iyy, izz, ixy, ixz, iyz] [kg m^2]");
+    Eigen::Matrix3d I;
+    I << i[0], i[3], i[4],  //
+        i[3], i[1], i[5],   //
+        i[4], i[5], i[2];
+    config.shape = "inertia";
+    config.size.clear();
+    try {
+      return rigid_body::MassProperties::fromInertia(mass, I);
+    } catch (const rigid_body::InvalidMassProperties& error) {
+      fail("inertia", *find(params, "inertia"),
+           std::string(error.what()) + " (a symmetric positive-definite tensor about the centre of mass)");
+    }
+  }
+  const std::string shape_allowed = "must be one of: box, sphere, cylinder (or give ~inertia)";
+  config.shape = readString(params, "shape", "box", shape_allowed);
+  std::string size_allowed;
+  size_t length = 0;
+  std::vector<double> fallback;
+  if (config.shape == "box") {
+    length = 3, size_allowed = "for a box, must be [x, y, z] with 3 finite numbers > 0 [m]", fallback = {0.4, 0.2, 0.1};
+  } else if (config.shape == "sphere") {
+    length = 1, size_allowed = "for a sphere, must be [radius] with a finite number > 0 [m]", fallback = {0.1};
+  } else if (config.shape == "cylinder") {
+    length = 2, size_allowed = "for a cylinder, must be [radius, length] with finite numbers > 0 [m]",
+    fallback = {0.1, 0.4};
+  } else {
+    fail("shape", *find(params, "shape"), shape_allowed);
+  }
+  config.size = readNumbers(params, "size", fallback, length, size_allowed);
+  for (double s : config.size) {
+    if (!(s > 0.0)) fail("size", *find(params, "size"), size_allowed);
+  }
+  if (config.shape == "box") {
+    return rigid_body::MassProperties::box(mass, Eigen::Vector3d(config.size[0], config.size[1], config.size[2]));
+  }
+  if (config.shape == "sphere") return rigid_body::MassProperties::sphere(mass, config.size[0]);
+  return rigid_body::MassProperties::cylinder(mass, config.size[0], config.size[1]);
+}
+
+void collectUnknown(const XmlRpcValue& params, const std::string& prefix, const std::set<std::string>& known,
+                    std::vector<std::string>& unknown) {
+  XmlRpcValue copy = params;
+  if (copy.getType() != XmlRpcValue::TypeStruct) return;
+  for (const auto& member : copy) {
+    if (!known.count(member.first)) unknown.push_back(prefix + member.first);
+  }
+}
+
+}  // namespace
+
+NodeConfig parseConfig(const XmlRpcValue& params) {
+  NodeConfig config;
+  config.rate = readNumber(params, "rate", config.rate, [](double r) { return r > 0.0 && r <= kMaxRate; },
+                           "must be a finite number in (0, 10000] [Hz]");
+  const double max_dt = 1.0 / config.rate;
+  std::ostringstream dt_allowed;
+  dt_allowed << "must be a finite number in (0, 1/rate = " << max_dt << "] [s]";
+  config.dt = readNumber(params, "dt", config.dt, [max_dt](double dt) { return dt > 0.0 && dt <= max_dt * (1 + 1e-12); },
+                         dt_allowed.str());
+  const std::string integrator_allowed = "must be one of: " + rigid_body::integratorNameList();
+  const std::string integrator = readString(params, "integrator", "rk4", integrator_allowed);
+  try {
+    config.integrator = rigid_body::integratorFromName(integrator);
+  } catch (const std::invalid_argument&) {
+    fail("integrator", *find(params, "integrator"), integrator_allowed);
+  }
+  config.world_frame = readFrame(params, "world_frame", config.world_frame);
+  config.body_frame = readFrame(params, "body_frame", config.body_frame);
+  if (config.world_frame == config.body_frame) {
+    const XmlRpcValue* body_frame = find(params, "body_frame");
+    fail("body_frame", body_frame ? *body_frame : XmlRpcValue(config.body_frame), "must differ from ~world_frame");
+  }
+
+  config.model.mass = readMassProperties(params, config);
+  config.model.forces.gravity_W = readVector3(params, "gravity", "[m/s^2]");
+  config.model.forces.linear_damping = readNumber(params, "linear_damping", 0.0, [](double c) { return c >= 0.0; },
+                                                  "must be a finite number >= 0 [N s/m]");
+  config.model.forces.angular_damping = readNumber(params, "angular_damping", 0.0, [](double c) { return c >= 0.0; },
+                                                   "must be a finite number >= 0 [N m s/rad]");
+
+  const Eigen::Vector3d position = readVector3(params, "initial/position", "[m]");
+  const std::vector<double> q = readNumbers(params, "initial/orientation", {0.0, 0.0, 0.0, 1.0}, 4,
+                                            "must be a unit quaternion [x, y, z, w] of 4 finite numbers");
+  const Eigen::Quaterniond orientation(q[3], q[0], q[1], q[2]);
+  if (std::abs(orientation.norm() - 1.0) > kQuaternionNormTolerance) {
+    fail("initial/orientation", *find(params, "initial/orientation"),
+         "must be a unit quaternion [x, y, z, w]: |q| must be within 1e-3 of 1 (it is then normalised)");
+  }
+  config.initial_linear_velocity_W = readVector3(params, "initial/linear_velocity", "[m/s], world axes");
+  config.initial_angular_velocity_B = readVector3(params, "initial/angular_velocity", "[rad/s], body axes");
+  config.initial = rigid_body::stateFromVelocities(config.model.mass, position, orientation,
+                                                   config.initial_linear_velocity_W, config.initial_angular_velocity_B);
+
+  config.wrench_timeout = readNumber(params, "wrench_timeout", 0.0, [](double t) { return t >= 0.0; },
+                                     "must be a finite number >= 0 [s] (0: hold until the next wrench)");
+  const XmlRpcValue* substeps = find(params, "max_substeps");
+  if (substeps) {
+    if (substeps->getType() != XmlRpcValue::TypeInt || static_cast<int>(*const_cast<XmlRpcValue*>(substeps)) < 1) {
+      fail("max_substeps", *substeps, "must be an integer >= 1");
+    }
+    config.max_substeps = static_cast<int>(*const_cast<XmlRpcValue*>(substeps));
+  }
+  const XmlRpcValue* publish_tf = find(params, "publish_tf");
+  if (publish_tf) {
+    if (publish_tf->getType() != XmlRpcValue::TypeBoolean) fail("publish_tf", *publish_tf, "must be true or false");
+    config.publish_tf = static_cast<bool>(*const_cast<XmlRpcValue*>(publish_tf));
+  }
+  collectUnknown(params, "", kTopLevelNames, config.unknown_parameters);
+  if (const XmlRpcValue* initial = find(params, "initial")) {
+    collectUnknown(*initial, "initial/", kInitialNames, config.unknown_parameters);
+  }
+  return config;
+}
+
+NodeConfig loadConfig(const ros::NodeHandle& private_nh) {
+  XmlRpcValue params;
+  if (!ros::param::get(private_nh.getNamespace(), params)) params = XmlRpcValue();
+  return parseConfig(params);
+}
+
+std::string NodeConfig::describe() const {
+  std::ostringstream out;
+  const Eigen::Vector3d& I = model.mass.principalMoments();
+  out << "rate " << rate << " Hz, dt " << dt << " s, integrator " << rigid_body::integratorName(integrator)
+      << ", frames " << world_frame << " -> " << body_frame << ", mass " << model.mass.mass() << " kg, shape "
+      << shape << ", principal moments [" << I.x() << ", " << I.y() << ", " << I.z() << "] kg m^2, gravity ["
+      << model.forces.gravity_W.transpose() << "] m/s^2, damping " << model.forces.linear_damping << " N s/m, "
+      << model.forces.angular_damping << " N m s/rad, wrench_timeout " << wrench_timeout << " s, max_substeps "
+      << max_substeps << ", publish_tf " << (publish_tf ? "true" : "false");
+  return out.str();
+}
+
+}  // namespace rigid_body_ros

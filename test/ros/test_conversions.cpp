@@ -1,0 +1,66 @@
+// Messages to and from the core without a master.
+#include <gtest/gtest.h>
+
+#include <tf2_eigen/tf2_eigen.h>
+
+#include <cmath>
+
+#include "rigid_body_sim/kinematics.hpp"
+#include "rigid_body_sim/ros/conversions.hpp"
+
+using namespace rigid_body_ros;
+
+TEST(Conversions, WrenchFrameClassification) {
+  EXPECT_EQ(classifyWrenchFrame("", "world", "base_link"), WrenchFrame::kBody);
+  EXPECT_EQ(classifyWrenchFrame("base_link", "world", "base_link"), WrenchFrame::kBody);
+  EXPECT_EQ(classifyWrenchFrame("world", "world", "base_link"), WrenchFrame::kWorld);
+  EXPECT_EQ(classifyWrenchFrame("thruster", "world", "base_link"), WrenchFrame::kOther);
+}
+
+TEST(Conversions, NonFiniteWrenchIsDetectedInEveryComponent) {
+  for (int i = 0; i < 6; ++i) {
+    geometry_msgs::Wrench wrench;
+    double* fields[] = {&wrench.force.x, &wrench.force.y, &wrench.force.z,
+                        &wrench.torque.x, &wrench.torque.y, &wrench.torque.z};
+    EXPECT_TRUE(isFinite(wrench));
+    *fields[i] = (i % 2) ? std::numeric_limits<double>::infinity() : std::nan("");
+    EXPECT_FALSE(isFinite(wrench)) << i;
+  }
+}
+
+TEST(Conversions, WrenchInAnotherFrameGetsRotatedAndTheMomentArm) {
+  // Frame F: origin at (1, 0, 0) in W, turned 90° about z (F's x axis is W's y axis).
+  Eigen::Isometry3d X_WF = Eigen::Isometry3d::Identity();
+  X_WF.translate(Eigen::Vector3d(1.0, 0.0, 0.0));
+  X_WF.rotate(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
+  geometry_msgs::Wrench wrench_F;
+  wrench_F.force.x = 2.0;  // (0, 2, 0) in W
+  wrench_F.torque.z = 0.5;
+  const rigid_body::Wrench in_W = wrenchInWorld(wrench_F, X_WF, Eigen::Vector3d::Zero());
+  EXPECT_TRUE(in_W.force.isApprox(Eigen::Vector3d(0.0, 2.0, 0.0), 1e-15));
+  // τ = (0, 0, 0.5) + (1, 0, 0) × (0, 2, 0) = (0, 0, 2.5)
+  EXPECT_TRUE(in_W.torque.isApprox(Eigen::Vector3d(0.0, 0.0, 2.5), 1e-15));
+}
+
+TEST(Conversions, OdometryTwistIsInTheBodyFrame) {
+  const rigid_body::MassProperties box = rigid_body::MassProperties::box(1.0, Eigen::Vector3d(0.4, 0.2, 0.1));
+  const Eigen::Quaterniond yaw90(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
+  // Moving along world +x while yawed 90°: in body axes that is −y. Spinning about world z: body z.
+  const rigid_body::State state = rigid_body::stateFromVelocities(box, Eigen::Vector3d(1, 2, 3), yaw90,
+                                                                  Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 0, 0.5));
+  nav_msgs::Odometry odom;
+  fillOdometry(box, state, odom);
+  EXPECT_NEAR(odom.twist.twist.linear.x, 0.0, 1e-15);
+  EXPECT_NEAR(odom.twist.twist.linear.y, -1.0, 1e-15);
+  EXPECT_NEAR(odom.twist.twist.angular.z, 0.5, 1e-15);
+  EXPECT_EQ(odom.pose.pose.position.y, 2.0);
+  EXPECT_NEAR(odom.pose.pose.orientation.z, std::sqrt(0.5), 1e-15);
+
+  rigid_body_sim::RigidBodyState message;
+  rigid_body::AppliedWrench input;
+  input.body.force = Eigen::Vector3d(1, 0, 0);
+  fillStateMessage(rigid_body::Model{box, rigid_body::ForceModel{}}, state, input, message);
+  EXPECT_NEAR(message.twist.linear.x, 1.0, 1e-15);  // world axes in the state message
+  EXPECT_NEAR(message.applied_wrench.force.y, 1.0, 1e-15);
+  EXPECT_NEAR(message.kinetic_energy, 0.5 * 1.0 + 0.5 * 0.25 * box.inertia()(2, 2), 1e-15);
+}

@@ -1,0 +1,161 @@
+// Parameter parsing and validation without a master: the private namespace as an XmlRpc struct.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "rigid_body_sim/kinematics.hpp"
+#include "rigid_body_sim/ros/parameters.hpp"
+
+using rigid_body_ros::NodeConfig;
+using rigid_body_ros::ParameterError;
+using rigid_body_ros::parseConfig;
+using XmlRpc::XmlRpcValue;
+
+namespace {
+
+XmlRpcValue list(std::initializer_list<double> values) {
+  XmlRpcValue array;
+  array.setSize(static_cast<int>(values.size()));
+  int i = 0;
+  for (double v : values) array[i++] = v;
+  return array;
+}
+
+// The message of the ParameterError that `params` raises, or "" if it parses.
+std::string errorOf(const XmlRpcValue& params) {
+  try {
+    parseConfig(params);
+  } catch (const ParameterError& error) {
+    return error.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(Parameters, DefaultsAreTheDefaultScene) {
+  const NodeConfig config = parseConfig(XmlRpcValue());
+  EXPECT_EQ(config.rate, 100.0);
+  EXPECT_EQ(config.dt, 0.001);
+  EXPECT_EQ(config.integrator, rigid_body::IntegratorType::kRk4);
+  EXPECT_EQ(config.world_frame, "world");
+  EXPECT_EQ(config.body_frame, "base_link");
+  EXPECT_EQ(config.model.mass.mass(), 1.0);
+  EXPECT_NEAR(config.model.mass.inertia()(0, 0), (0.04 + 0.01) / 12.0, 1e-16);
+  EXPECT_EQ(config.model.forces.gravity_W, Eigen::Vector3d::Zero());
+  EXPECT_EQ(config.wrench_timeout, 0.0);
+  EXPECT_TRUE(config.publish_tf);
+  EXPECT_TRUE(config.unknown_parameters.empty());
+}
+
+TEST(Parameters, ReadsEveryKey) {
+  XmlRpcValue params;
+  params["rate"] = 50;  // an int where a double is expected is fine
+  params["dt"] = 0.002;
+  params["integrator"] = std::string("semi_implicit_euler");
+  params["world_frame"] = std::string("odom");
+  params["body_frame"] = std::string("body");
+  params["mass"] = 2.0;
+  params["shape"] = std::string("cylinder");
+  params["size"] = list({0.1, 1.0});
+  params["gravity"] = list({0.0, 0.0, -9.81});
+  params["linear_damping"] = 0.5;
+  params["angular_damping"] = 0.25;
+  params["wrench_timeout"] = 0.5;
+  params["max_substeps"] = 20;
+  params["publish_tf"] = false;
+  params["initial"]["position"] = list({1.0, 2.0, 3.0});
+  params["initial"]["orientation"] = list({0.0, 0.0, std::sqrt(0.5), std::sqrt(0.5)});
+  params["initial"]["linear_velocity"] = list({1.0, 0.0, 0.0});
+  params["initial"]["angular_velocity"] = list({0.0, 0.0, 0.5});
+  const NodeConfig config = parseConfig(params);
+  EXPECT_EQ(config.rate, 50.0);
+  EXPECT_EQ(config.dt, 0.002);
+  EXPECT_EQ(config.integrator, rigid_body::IntegratorType::kSemiImplicitEuler);
+  EXPECT_EQ(config.world_frame, "odom");
+  EXPECT_EQ(config.body_frame, "body");
+  EXPECT_NEAR(config.model.mass.inertia()(2, 2), 0.5 * 2.0 * 0.01, 1e-15);
+  EXPECT_EQ(config.model.forces.gravity_W.z(), -9.81);
+  EXPECT_EQ(config.model.forces.linear_damping, 0.5);
+  EXPECT_EQ(config.model.forces.angular_damping, 0.25);
+  EXPECT_EQ(config.wrench_timeout, 0.5);
+  EXPECT_EQ(config.max_substeps, 20);
+  EXPECT_FALSE(config.publish_tf);
+  EXPECT_EQ(config.initial.p_WB, Eigen::Vector3d(1.0, 2.0, 3.0));
+  // v is given in world axes, ω in body axes: P = M v, L = R I ω_B.
+  EXPECT_TRUE(config.initial.P_W.isApprox(Eigen::Vector3d(2.0, 0.0, 0.0)));
+  EXPECT_TRUE(rigid_body::angularVelocity(config.model.mass, config.initial).isApprox(Eigen::Vector3d(0, 0, 0.5)));
+}
+
+TEST(Parameters, FullInertiaOverridesTheShape) {
+  XmlRpcValue params;
+  params["shape"] = std::string("sphere");
+  params["inertia"] = list({1.0, 2.0, 2.5, 0.1, 0.0, 0.0});
+  const NodeConfig config = parseConfig(params);
+  EXPECT_EQ(config.shape, "inertia");
+  EXPECT_EQ(config.model.mass.inertia()(0, 1), 0.1);
+  EXPECT_EQ(config.model.mass.inertia()(1, 0), 0.1);
+}
+
+TEST(Parameters, EachInvalidValueNamesTheParameterAndTheRule) {
+  struct Case {
+    std::string name;
+    XmlRpcValue value;
+    std::string expected;  // a part of the message
+  };
+  const std::vector<Case> cases = {
+      {"mass", XmlRpcValue(-1.0), "parameter ~mass = -1: must be a finite number > 0 [kg]"},
+      {"mass", XmlRpcValue(std::string("heavy")), "parameter ~mass = 'heavy'"},
+      {"rate", XmlRpcValue(0.0), "parameter ~rate = 0: must be a finite number in (0, 10000] [Hz]"},
+      {"dt", XmlRpcValue(0.1), "parameter ~dt = 0.10000000000000001: must be a finite number in (0, 1/rate = 0.01] [s]"},
+      {"integrator", XmlRpcValue(std::string("rk5")),
+       "parameter ~integrator = 'rk5': must be one of: explicit_euler, semi_implicit_euler, rk4"},
+      {"shape", XmlRpcValue(std::string("cone")), "parameter ~shape = 'cone': must be one of: box, sphere, cylinder"},
+      {"size", list({0.4, 0.2}), "parameter ~size = [0.40000000000000002, 0.20000000000000001]: for a box, must be [x, y, z]"},
+      {"size", list({0.4, -0.2, 0.1}), "for a box, must be [x, y, z] with 3 finite numbers > 0 [m]"},
+      {"inertia", list({1.0, 1.0, 5.0, 0.0, 0.0, 0.0}), "parameter ~inertia = [1, 1, 5, 0, 0, 0]: inertia violates the triangle inequality"},
+      {"inertia", list({1.0, 1.0}), "must be a list of 6 finite numbers"},
+      {"gravity", list({0.0, 0.0}), "parameter ~gravity = [0, 0]: must be a list of 3 finite numbers"},
+      {"linear_damping", XmlRpcValue(-0.1), "parameter ~linear_damping = -0.10000000000000001: must be a finite number >= 0"},
+      {"angular_damping", XmlRpcValue(std::nan("")), "~angular_damping = nan: must be a finite number >= 0"},
+      {"wrench_timeout", XmlRpcValue(-1), "parameter ~wrench_timeout = -1: must be a finite number >= 0 [s]"},
+      {"max_substeps", XmlRpcValue(0), "parameter ~max_substeps = 0: must be an integer >= 1"},
+      {"publish_tf", XmlRpcValue(std::string("yes")), "parameter ~publish_tf = 'yes': must be true or false"},
+      {"world_frame", XmlRpcValue(std::string("/world")), "parameter ~world_frame = '/world': must be a non-empty tf2 frame id"},
+      {"body_frame", XmlRpcValue(std::string("world")), "parameter ~body_frame = 'world': must differ from ~world_frame"},
+  };
+  for (const Case& c : cases) {
+    XmlRpcValue params;
+    params[c.name] = c.value;
+    const std::string message = errorOf(params);
+    EXPECT_NE(message.find(c.expected), std::string::npos) << "for ~" << c.name << " got: '" << message << "'";
+  }
+}
+
+TEST(Parameters, InvalidInitialStateIsRefused) {
+  XmlRpcValue params;
+  params["initial"]["orientation"] = list({0.0, 0.0, 0.0, 2.0});
+  EXPECT_NE(errorOf(params).find("parameter ~initial/orientation = [0, 0, 0, 2]: must be a unit quaternion"),
+            std::string::npos)
+      << errorOf(params);
+  XmlRpcValue velocity;
+  velocity["initial"]["linear_velocity"] = list({0.0, std::numeric_limits<double>::infinity(), 0.0});
+  EXPECT_NE(errorOf(velocity).find("~initial/linear_velocity"), std::string::npos) << errorOf(velocity);
+}
+
+TEST(Parameters, NearlyUnitQuaternionIsNormalised) {
+  XmlRpcValue params;
+  params["initial"]["orientation"] = list({0.0, 0.0, 0.7071, 0.7071});
+  const NodeConfig config = parseConfig(params);
+  EXPECT_NEAR(config.initial.q_WB.norm(), 1.0, 1e-15);
+}
+
+TEST(Parameters, UnknownNamesAreReported) {
+  XmlRpcValue params;
+  params["mas"] = 1.0;
+  params["initial"]["postion"] = list({0.0, 0.0, 0.0});
+  const NodeConfig config = parseConfig(params);
+  ASSERT_EQ(config.unknown_parameters.size(), 2u);
+  EXPECT_EQ(config.unknown_parameters[0], "mas");
+  EXPECT_EQ(config.unknown_parameters[1], "initial/postion");
+}
