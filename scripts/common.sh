@@ -34,10 +34,24 @@ install_dependencies() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y --no-install-recommends "${missing[@]}"
 }
 
-# Makes the workspace (src/rigid_body_sim links to this checkout) and builds it with catkin_make.
+# Makes the workspace and builds it with catkin_make. src/rigid_body_sim is a real folder whose entries
+# link to this checkout's top-level entries (all but the workspace itself): a link to the checkout as a
+# whole would put the workspace inside the package, and rosrun's `find -L` would loop through it.
+link_package() {
+  local package="$WORKSPACE/src/rigid_body_sim"
+  [ -L "$package" ] && rm "$package"
+  mkdir -p "$package"
+  find "$package" -maxdepth 1 -type l ! -exec test -e {} \; -delete  # entries the checkout no longer has
+  local entry
+  for entry in "$PACKAGE_DIR"/*; do
+    [ "$(cd "$entry" 2>/dev/null && pwd -P)" = "$(cd "$WORKSPACE" && pwd -P)" ] && continue
+    ln -sfn "$entry" "$package/$(basename "$entry")"
+  done
+}
+
 build_workspace() {
   mkdir -p "$WORKSPACE/src"
-  ln -sfn "$PACKAGE_DIR" "$WORKSPACE/src/rigid_body_sim"
+  link_package
   (cd "$WORKSPACE" && catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release "$@")
 }
 

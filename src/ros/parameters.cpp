@@ -4,6 +4,7 @@
 #include <ros/param.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <set>
 #include <sstream>
 
@@ -96,11 +97,34 @@ double readNumber(const XmlRpcValue& params, const std::string& name, double fal
   return number;
 }
 
+// roscpp turns a rosrun argument _size:=[0.4,0.2,0.1] into the string "[0.4,0.2,0.1]" (it parses only
+// scalars), so a list may come as text: "[a, b, ...]" of numbers becomes an XmlRpc array.
+bool parseListText(const std::string& text, XmlRpcValue& array) {
+  const size_t open = text.find_first_not_of(" \t");
+  const size_t close = text.find_last_not_of(" \t");
+  if (open == std::string::npos || text[open] != '[' || text[close] != ']') return false;
+  std::istringstream items(text.substr(open + 1, close - open - 1));
+  std::string item;
+  array.setSize(0);
+  int index = 0;
+  while (std::getline(items, item, ',')) {
+    char* end = nullptr;
+    const double number = std::strtod(item.c_str(), &end);
+    if (end == item.c_str() || item.find_first_not_of(" \t", end - item.c_str()) != std::string::npos) return false;
+    array[index++] = number;
+  }
+  return true;
+}
+
 std::vector<double> readNumbers(const XmlRpcValue& params, const std::string& name, std::vector<double> fallback,
                                 size_t length, const std::string& allowed) {
   const XmlRpcValue* value = find(params, name);
   if (!value) return fallback;
   XmlRpcValue copy = *value;
+  if (copy.getType() == XmlRpcValue::TypeString) {
+    XmlRpcValue parsed;
+    if (parseListText(static_cast<std::string>(copy), parsed)) copy = parsed;
+  }
   if (copy.getType() != XmlRpcValue::TypeArray || static_cast<size_t>(copy.size()) != length) {
     fail(name, *value, allowed);
   }

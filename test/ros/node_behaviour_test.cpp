@@ -1,1 +1,302 @@
-int main(){return 0;}
+// The running node, seen from outside as a user sees it: topics, tf, services. Every wait is bounded.
+#include <geometry_msgs/WrenchStamped.h>
+#include <gtest/gtest.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+#include <std_srvs/Empty.h>
+#include <tf2_eigen/tf2_eigen.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/static_transform_broadcaster.h>
+#include <tf2_ros/transform_listener.h>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <memory>
+
+#include "rigid_body_sim/RigidBodyState.h"
+
+namespace {
+
+// The longest any single wait may take [s, wall time]; rostest's time-limit bounds the whole file.
+constexpr double kWaitLimit = 10.0;
+
+bool waitUntil(const std::function<bool()>& condition, double timeout = kWaitLimit) {
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
+  while (!condition()) {
+    if (ros::WallTime::now() > deadline || !ros::ok()) return false;
+    ros::spinOnce();
+    ros::WallDuration(0.001).sleep();
+  }
+  return true;
+}
+
+void spinFor(double seconds) {
+  waitUntil([] { return false; }, seconds);
+}
+
+template <typename Message>
+class Recorder {
+ public:
+  Recorder(ros::NodeHandle& nh, const std::string& topic)
+      : subscriber_(nh.subscribe(topic, 1000, &Recorder::onMessage, this)) {}
+  void onMessage(const Message& message) { messages.push_back(message); }
+  bool waitForCount(size_t count) {
+    return waitUntil([&] { return messages.size() >= count; });
+  }
+  /// Waits for the first message stamped after `stamp`.
+  bool waitForStampAfter(const ros::Time& stamp, Message& out) {
+    return waitUntil([&] {
+      if (messages.empty() || messages.back().header.stamp <= stamp) return false;
+      out = messages.back();
+      return true;
+    });
+  }
+  std::vector<Message> messages;
+
+ private:
+  ros::Subscriber subscriber_;
+};
+
+Eigen::Vector3d worldVelocity(const nav_msgs::Odometry& odom) {
+  Eigen::Quaterniond q_WB;
+  Eigen::Vector3d v_B;
+  tf2::fromMsg(odom.pose.pose.orientation, q_WB);
+  tf2::fromMsg(odom.twist.twist.linear, v_B);
+  return q_WB * v_B;
+}
+
+Eigen::Vector3d position(const nav_msgs::Odometry& odom) {
+  Eigen::Vector3d p;
+  tf2::fromMsg(odom.pose.pose.position, p);
+  return p;
+}
+
+bool allFinite(const nav_msgs::Odometry& odom) {
+  const auto& p = odom.pose.pose;
+  const auto& t = odom.twist.twist;
+  for (double value : {p.position.x, p.position.y, p.position.z, p.orientation.x, p.orientation.y, p.orientation.z,
+                       p.orientation.w, t.linear.x, t.linear.y, t.linear.z, t.angular.x, t.angular.y, t.angular.z}) {
+    if (!std::isfinite(value)) return false;
+  }
+  return true;
+}
+
+geometry_msgs::WrenchStamped wrench(const std::string& frame, double fx, double fy, double fz) {
+  geometry_msgs::WrenchStamped message;
+  message.header.frame_id = frame;
+  message.header.stamp = ros::Time::now();
+  message.wrench.force.x = fx;
+  message.wrench.force.y = fy;
+  message.wrench.force.z = fz;
+  return message;
+}
+
+class NodeBehaviour : public ::testing::Test {
+ protected:
+  ros::Publisher advertiseWrench(const std::string& ns) {
+    ros::Publisher publisher = nh_.advertise<geometry_msgs::WrenchStamped>(ns + "/wrench", 10);
+    EXPECT_TRUE(waitUntil([&] { return publisher.getNumSubscribers() > 0; })) << ns << "/wrench has no subscriber";
+    return publisher;
+  }
+  ros::NodeHandle nh_;
+};
+
+}  // namespace
+
+TEST_F(NodeBehaviour, PublishesOdometryAndTfAtTheConfiguredRateWithOneStamp) {
+  tf2_ros::Buffer buffer;
+  tf2_ros::TransformListener listener(buffer);
+  Recorder<nav_msgs::Odometry> odom(nh_, "push/odom");
+  ASSERT_TRUE(odom.waitForCount(1));
+  odom.messages.clear();
+  spinFor(2.0);
+  const std::vector<nav_msgs::Odometry>& messages = odom.messages;
+  ASSERT_GE(messages.size(), 50u);
+  // The node runs at rate 50: the stamps advance by 1/50 s on average, strictly increasing.
+  for (size_t i = 1; i < messages.size(); ++i) {
+    ASSERT_GT(messages[i].header.stamp, messages[i - 1].header.stamp) << i;
+  }
+  const double span = (messages.back().header.stamp - messages.front().header.stamp).toSec();
+  EXPECT_NEAR((messages.size() - 1) / span, 50.0, 2.5);
+  // Received at that rate as well (a generous band: the wall clock of a loaded CI machine).
+  EXPECT_NEAR(messages.size() / 2.0, 50.0, 10.0);
+  EXPECT_EQ(messages.back().header.frame_id, "world");
+  EXPECT_EQ(messages.back().child_frame_id, "push_link");
+
+  // tf carries the same pose under the same stamp.
+  const nav_msgs::Odometry& last = messages.back();
+  ASSERT_TRUE(waitUntil([&] { return buffer.canTransform("world", "push_link", last.header.stamp); }));
+  const geometry_msgs::TransformStamped transform = buffer.lookupTransform("world", "push_link", last.header.stamp);
+  EXPECT_EQ(transform.header.stamp, last.header.stamp);
+  EXPECT_DOUBLE_EQ(transform.transform.translation.x, last.pose.pose.position.x);
+  EXPECT_DOUBLE_EQ(transform.transform.rotation.w, last.pose.pose.orientation.w);
+}
+
+TEST_F(NodeBehaviour, WorldForceChangesVelocityByForceOverMassTimesTime) {
+  Recorder<nav_msgs::Odometry> odom(nh_, "push/odom");
+  ros::Publisher publisher = advertiseWrench("push");
+  const Eigen::Vector3d force(1.0, 0.0, 0.5);
+  const double mass = 2.0;
+  publisher.publish(wrench("world", force.x(), force.y(), force.z()));
+  // a: the first message whose velocity shows the push; b: one about half a second later.
+  ASSERT_TRUE(waitUntil([&] { return !odom.messages.empty() && worldVelocity(odom.messages.back()).x() > 0.0; }));
+  const nav_msgs::Odometry a = odom.messages.back();
+  nav_msgs::Odometry b;
+  ASSERT_TRUE(odom.waitForStampAfter(a.header.stamp + ros::Duration(0.5), b));
+  const double dt = (b.header.stamp - a.header.stamp).toSec();
+  const Eigen::Vector3d dv = worldVelocity(b) - worldVelocity(a);
+  const Eigen::Vector3d expected = force / mass * dt;
+  EXPECT_NEAR(dv.x(), expected.x(), 0.01 * expected.x());
+  EXPECT_NEAR(dv.z(), expected.z(), 0.01 * expected.z());
+  EXPECT_NEAR(dv.y(), 0.0, 1e-12);
+  publisher.publish(wrench("world", 0.0, 0.0, 0.0));
+}
+
+TEST_F(NodeBehaviour, BodyFrameForceOnARotatedBodyShowsUpRotatedInTheWorld) {
+  Recorder<nav_msgs::Odometry> odom(nh_, "yawed/odom");
+  ros::Publisher publisher = advertiseWrench("yawed");
+  const double mass = 0.5, force = 0.25;
+  // frame_id = body frame: body axes. The body is yawed by 90°, so body x is world y.
+  publisher.publish(wrench("yawed_link", force, 0.0, 0.0));
+  ASSERT_TRUE(waitUntil([&] { return !odom.messages.empty() && worldVelocity(odom.messages.back()).y() > 0.0; }));
+  const nav_msgs::Odometry a = odom.messages.back();
+  nav_msgs::Odometry b;
+  ASSERT_TRUE(odom.waitForStampAfter(a.header.stamp + ros::Duration(0.5), b));
+  const double dt = (b.header.stamp - a.header.stamp).toSec();
+  const Eigen::Vector3d dv = worldVelocity(b) - worldVelocity(a);
+  EXPECT_NEAR(dv.y(), force / mass * dt, 0.01 * force / mass * dt);
+  EXPECT_NEAR(dv.x(), 0.0, 1e-9);
+  // In body axes the body moves along its own x.
+  EXPECT_GT(b.twist.twist.linear.x, 0.0);
+  EXPECT_NEAR(b.twist.twist.linear.y, 0.0, 1e-9);
+  publisher.publish(wrench("yawed_link", 0.0, 0.0, 0.0));
+}
+
+TEST_F(NodeBehaviour, OdometryTwistIsExpressedInTheBodyFrame) {
+  Recorder<nav_msgs::Odometry> odom(nh_, "spinner/odom");
+  ASSERT_TRUE(odom.waitForCount(1));
+  // After about a second the body has yawed by ~0.5 rad while still moving along world x.
+  nav_msgs::Odometry late;
+  ASSERT_TRUE(odom.waitForStampAfter(odom.messages.front().header.stamp + ros::Duration(1.0), late));
+  for (const nav_msgs::Odometry& message : odom.messages) {
+    // ω in body axes is the configured (0, 0, 0.5); v turned back into world axes is (1, 0, 0).
+    EXPECT_NEAR(message.twist.twist.angular.z, 0.5, 1e-9);
+    EXPECT_NEAR(message.twist.twist.angular.x, 0.0, 1e-9);
+    EXPECT_TRUE(worldVelocity(message).isApprox(Eigen::Vector3d(1.0, 0.0, 0.0), 1e-9))
+        << worldVelocity(message).transpose();
+  }
+  // The body-axes velocity is (cos ψ, −sin ψ, 0) with yaw ψ = 2 atan2(q_z, q_w): not world axes.
+  const double yaw = 2.0 * std::atan2(late.pose.pose.orientation.z, late.pose.pose.orientation.w);
+  EXPECT_GT(yaw, 0.4);
+  EXPECT_NEAR(late.twist.twist.linear.x, std::cos(yaw), 1e-9);
+  EXPECT_NEAR(late.twist.twist.linear.y, -std::sin(yaw), 1e-9);
+}
+
+TEST_F(NodeBehaviour, ResetReturnsToTheInitialStateAndKeepsStampsIncreasing) {
+  Recorder<nav_msgs::Odometry> odom(nh_, "guarded/odom");
+  ros::Publisher publisher = advertiseWrench("guarded");
+  publisher.publish(wrench("world", 0.0, 3.0, 0.0));
+  ASSERT_TRUE(waitUntil([&] { return !odom.messages.empty() && position(odom.messages.back()).y() > 0.01; }));
+  const ros::Time before_reset = odom.messages.back().header.stamp;
+
+  ros::ServiceClient reset = nh_.serviceClient<std_srvs::Empty>("guarded/reset");
+  ASSERT_TRUE(reset.waitForExistence(ros::Duration(kWaitLimit)));
+  std_srvs::Empty call;
+  ASSERT_TRUE(reset.call(call));
+  const size_t first_after = odom.messages.size();
+  ASSERT_TRUE(odom.waitForCount(first_after + 3));
+  // Wrench cleared and state back to the initial one: at rest at (0, 0, 1).
+  const nav_msgs::Odometry& after = odom.messages.back();
+  EXPECT_EQ(position(after), Eigen::Vector3d(0.0, 0.0, 1.0));
+  EXPECT_EQ(worldVelocity(after), Eigen::Vector3d::Zero());
+  EXPECT_GT(after.header.stamp, before_reset);
+  for (size_t i = 1; i < odom.messages.size(); ++i) {
+    ASSERT_GT(odom.messages[i].header.stamp, odom.messages[i - 1].header.stamp) << i;
+  }
+}
+
+TEST_F(NodeBehaviour, NonFiniteWrenchIsRejectedAndTheNodeKeepsPublishing) {
+  Recorder<nav_msgs::Odometry> odom(nh_, "guarded/odom");
+  ros::Publisher publisher = advertiseWrench("guarded");
+  ros::ServiceClient reset = nh_.serviceClient<std_srvs::Empty>("guarded/reset");
+  std_srvs::Empty call;
+  ASSERT_TRUE(reset.call(call));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  publisher.publish(wrench("world", nan, 0.0, 0.0));
+  publisher.publish(wrench("guarded_link", 0.0, inf, 0.0));
+  geometry_msgs::WrenchStamped torque = wrench("world", 0.0, 0.0, 0.0);
+  torque.wrench.torque.z = nan;
+  publisher.publish(torque);
+  ASSERT_TRUE(odom.waitForCount(1));
+  const size_t count = odom.messages.size();
+  ASSERT_TRUE(odom.waitForCount(count + 25));  // alive: half a second more of odometry
+  for (const nav_msgs::Odometry& message : odom.messages) {
+    ASSERT_TRUE(allFinite(message));
+  }
+  // Nothing of the rejected wrenches reached the state: still at rest where reset put it.
+  EXPECT_EQ(worldVelocity(odom.messages.back()), Eigen::Vector3d::Zero());
+  EXPECT_EQ(position(odom.messages.back()), Eigen::Vector3d(0.0, 0.0, 1.0));
+}
+
+TEST_F(NodeBehaviour, WrenchInATfFrameGetsItsMomentArmAndAnUnknownFrameIsRejected) {
+  Recorder<rigid_body_sim::RigidBodyState> state(nh_, "guarded/state");
+  ros::Publisher publisher = advertiseWrench("guarded");
+  ros::ServiceClient reset = nh_.serviceClient<std_srvs::Empty>("guarded/reset");
+  std_srvs::Empty call;
+  ASSERT_TRUE(reset.call(call));
+
+  // A frame nobody publishes: rejected, the body stays at rest.
+  publisher.publish(wrench("no_such_frame", 1.0, 0.0, 0.0));
+  ASSERT_TRUE(state.waitForCount(25));
+  EXPECT_EQ(state.messages.back().linear_momentum.x, 0.0);
+
+  // "lever": 0.5 m along world +y from the body's centre (0, 0, 1), axes turned 90° about z.
+  tf2_ros::StaticTransformBroadcaster static_broadcaster;
+  geometry_msgs::TransformStamped lever;
+  lever.header.stamp = ros::Time::now();
+  lever.header.frame_id = "world";
+  lever.child_frame_id = "lever";
+  lever.transform.translation.y = 0.5;
+  lever.transform.translation.z = 1.0;
+  lever.transform.rotation = tf2::toMsg(Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ())));
+  static_broadcaster.sendTransform(lever);
+  spinFor(0.5);  // let the node's tf listener receive it
+  // Force along lever x = world y... would have no moment arm; along lever −y = world +x it has:
+  // τ = (0, 0.5, 0) × (1, 0, 0) = (0, 0, −0.5) N m.
+  geometry_msgs::WrenchStamped push = wrench("lever", 0.0, -1.0, 0.0);
+  push.header.stamp = ros::Time(0);  // "latest transform"
+  publisher.publish(push);
+  ASSERT_TRUE(waitUntil([&] { return !state.messages.empty() && state.messages.back().linear_momentum.x > 0.0; }));
+  const rigid_body_sim::RigidBodyState a = state.messages.back();
+  rigid_body_sim::RigidBodyState b;
+  ASSERT_TRUE(state.waitForStampAfter(a.header.stamp + ros::Duration(0.3), b));
+  const double dt = (b.header.stamp - a.header.stamp).toSec();
+  EXPECT_NEAR(b.linear_momentum.x - a.linear_momentum.x, 1.0 * dt, 0.01 * dt);
+  EXPECT_NEAR(b.angular_momentum.z - a.angular_momentum.z, -0.5 * dt, 0.01 * 0.5 * dt);
+  EXPECT_NEAR(b.applied_wrench.torque.z, -0.5, 1e-12);
+  publisher.publish(wrench("world", 0.0, 0.0, 0.0));
+}
+
+TEST_F(NodeBehaviour, WrenchDropsToZeroAfterTheTimeout) {
+  Recorder<nav_msgs::Odometry> odom(nh_, "timed/odom");
+  ros::Publisher publisher = advertiseWrench("timed");
+  publisher.publish(wrench("world", 2.0, 0.0, 0.0));
+  ASSERT_TRUE(waitUntil([&] { return !odom.messages.empty() && worldVelocity(odom.messages.back()).x() > 0.0; }));
+  const ros::Time pushed = odom.messages.back().header.stamp;
+  nav_msgs::Odometry later;
+  ASSERT_TRUE(odom.waitForStampAfter(pushed + ros::Duration(0.5), later));
+  // The wrench acted for wrench_timeout = 0.2 s: Δv = F/M · 0.2 = 0.4 m/s, to within one 1 ms step.
+  EXPECT_NEAR(worldVelocity(later).x(), 0.4, 2.0 * 0.001 * 2.0);
+  nav_msgs::Odometry latest;
+  ASSERT_TRUE(odom.waitForStampAfter(later.header.stamp + ros::Duration(0.1), latest));
+  EXPECT_EQ(worldVelocity(latest).x(), worldVelocity(later).x());  // no longer accelerating
+}
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "node_behaviour_test");
+  ros::NodeHandle nh;
+  return RUN_ALL_TESTS();
+}

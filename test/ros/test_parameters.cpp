@@ -143,6 +143,19 @@ TEST(Parameters, InvalidInitialStateIsRefused) {
   EXPECT_NE(errorOf(velocity).find("~initial/linear_velocity"), std::string::npos) << errorOf(velocity);
 }
 
+TEST(Parameters, ListsWrittenAsTextAreRead) {
+  // What roscpp makes of `rosrun ... _size:="[0.5, 0.25, 2]"`: a string.
+  XmlRpcValue params;
+  params["size"] = std::string("[0.5, 0.25, 2]");
+  params["initial"]["position"] = std::string(" [1,-2e-1, 3] ");
+  const NodeConfig config = parseConfig(params);
+  EXPECT_EQ(config.size, (std::vector<double>{0.5, 0.25, 2.0}));
+  EXPECT_EQ(config.initial.p_WB, Eigen::Vector3d(1.0, -0.2, 3.0));
+  XmlRpcValue bad;
+  bad["size"] = std::string("[0.5, big, 2]");
+  EXPECT_NE(errorOf(bad).find("parameter ~size = '[0.5, big, 2]': for a box"), std::string::npos) << errorOf(bad);
+}
+
 TEST(Parameters, NearlyUnitQuaternionIsNormalised) {
   XmlRpcValue params;
   params["initial"]["orientation"] = list({0.0, 0.0, 0.7071, 0.7071});
