@@ -2,14 +2,17 @@
 
 namespace rigid_body {
 
+Wrench externalWrench(const Model& model, const Eigen::Matrix3d& R_WB, const AppliedWrench& input) {
+  Wrench external = input.world;
+  external.force += R_WB * input.body.force + model.mass.mass() * model.forces.gravity_W;
+  external.torque += R_WB * input.body.torque;
+  return external;
+}
+
 Wrench totalWrench(const Model& model, const Motion& motion, const AppliedWrench& input) {
-  const ForceModel& forces = model.forces;
-  Wrench total = input.world;
-  total.force += motion.R_WB * input.body.force;
-  total.torque += motion.R_WB * input.body.torque;
-  total.force += model.mass.mass() * forces.gravity_W;
-  total.force -= forces.linear_damping * motion.v_WB_W;
-  total.torque -= forces.angular_damping * motion.w_WB_W;
+  Wrench total = externalWrench(model, motion.R_WB, input);
+  total.force -= model.forces.linear_damping * motion.v_WB_W;
+  total.torque -= model.forces.angular_damping * motion.w_WB_W;
   return total;
 }
 
@@ -26,6 +29,7 @@ Derivative derivative(const Model& model, const State& state, const AppliedWrenc
   rate.q_dot = quaternionRate(motion.w_WB_W, state.q_WB);
   rate.P_dot = wrench.force;
   rate.L_dot = wrench.torque;
+  rate.w_WB_W = motion.w_WB_W;
   return rate;
 }
 

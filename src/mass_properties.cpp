@@ -29,12 +29,17 @@ void requirePositiveFinite(double value, const char* what, const char* unit) {
 }  // namespace
 
 MassProperties::MassProperties(double mass, const Eigen::Matrix3d& I_Bcm_B,
-                               const Eigen::Vector3d& principal_moments)
+                               const Eigen::Vector3d& principal_moments, const Eigen::Matrix3d& R_BP)
     : mass_(mass),
       inverse_mass_(1.0 / mass),
       I_Bcm_B_(I_Bcm_B),
       I_Bcm_B_inv_(I_Bcm_B.inverse()),
-      principal_moments_(principal_moments) {}
+      principal_moments_(principal_moments),
+      R_BP_(R_BP) {}
+
+bool MassProperties::isIsotropic() const {
+  return principal_moments_(2) - principal_moments_(0) <= kRelativeTolerance * principal_moments_(2);
+}
 
 MassProperties MassProperties::box(double mass, const Eigen::Vector3d& size) {
   requirePositiveFinite(size.x(), "box size x", "m");
@@ -66,7 +71,10 @@ MassProperties MassProperties::fromInertia(double mass, const Eigen::Matrix3d& I
     throw InvalidMassProperties("inertia must be symmetric");
   }
   const Eigen::Matrix3d symmetric = 0.5 * (I + I.transpose());
-  const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(symmetric).eigenvalues();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(symmetric);
+  const Eigen::Vector3d moments = eigen.eigenvalues();
+  Eigen::Matrix3d R_BP = eigen.eigenvectors();
+  if (R_BP.determinant() < 0.0) R_BP.col(2) *= -1.0;  // a proper rotation, not a reflection
   if (!(moments(0) > 0.0)) {
     throw InvalidMassProperties("inertia must be positive definite, smallest principal moment is " +
                                 formatNumber(moments(0)) + " kg m^2");
@@ -77,7 +85,7 @@ MassProperties MassProperties::fromInertia(double mass, const Eigen::Matrix3d& I
                                 formatNumber(moments(2)) + " > " + formatNumber(moments(0)) + " + " +
                                 formatNumber(moments(1)) + " kg m^2");
   }
-  return MassProperties(mass, symmetric, moments);
+  return MassProperties(mass, symmetric, moments, R_BP);
 }
 
 }  // namespace rigid_body

@@ -19,8 +19,8 @@ std::int64_t wholeStepsIn(double elapsed, double dt) {
 }
 
 Simulation::Simulation(const Model& model, const State& initial, IntegratorType integrator, double dt,
-                       std::int64_t max_substeps)
-    : model_(model), initial_(initial), state_(initial), integrator_(integrator), dt_(dt),
+                       std::int64_t max_substeps, const IntegratorSettings& settings)
+    : model_(model), initial_(initial), state_(initial), integrator_(integrator, settings), dt_(dt),
       max_substeps_(max_substeps) {
   if (!std::isfinite(dt) || dt <= 0.0) throw std::invalid_argument("dt must be a finite number > 0 [s]");
   if (max_substeps < 1) throw std::invalid_argument("max_substeps must be >= 1");

@@ -24,10 +24,14 @@ struct Derivative {
   Eigen::Vector4d q_dot;  ///< q̇ [1/s], coefficients (x, y, z, w)
   Eigen::Vector3d P_dot;  ///< Ṗ = F [N]
   Eigen::Vector3d L_dot;  ///< L̇ = τ [N m]
+  Eigen::Vector3d w_WB_W; ///< ω [rad/s], world axes: q̇ as an element of the Lie algebra (q̇ = ½[0, ω]⊗q)
 };
 
-/// Total wrench about the centre of mass in world axes: the applied input (world part plus the body part
-/// turned by R), gravity M g, and damping −c v, −c_ω ω.
+/// The wrench that does not depend on the velocities, about the centre of mass in world axes: the applied
+/// input (world part plus the body part turned by R_WB) and gravity M g.
+Wrench externalWrench(const Model& model, const Eigen::Matrix3d& R_WB, const AppliedWrench& input);
+
+/// Total wrench about the centre of mass in world axes: externalWrench plus damping −c v, −c_ω ω.
 Wrench totalWrench(const Model& model, const Motion& motion, const AppliedWrench& input);
 
 /// q̇ = ½ [0, ω] ⊗ q for a world-axes ω, as coefficients (x, y, z, w).

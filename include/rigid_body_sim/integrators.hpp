@@ -1,9 +1,10 @@
 // Time integrators for the state-space form Y = (x, q, P, L), behind one interface.
 //
-// Every method keeps the momentum form: with no torque, world L is unchanged by any step, so the
-// errors of a torque-free body live in the orientation (and, through it, in the energy).
+// Every method keeps the momentum form: with no torque, world L is unchanged by any step, so the errors
+// of a torque-free body live in the orientation (and, through it, in the energy).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -15,9 +16,14 @@ namespace rigid_body {
 
 /// The available methods. Add a method here, in kIntegratorNames and in Integrator::doStep's switch.
 enum class IntegratorType {
-  kExplicitEuler,      ///< Y ← Y + h f(Y), then q normalised. First order.
-  kSemiImplicitEuler,  ///< momenta first, then x with the new v and q ← exp(ω h) ⊗ q. First order.
-  kRk4,                ///< classic Runge–Kutta on the whole Y, q normalised after the step. Fourth order.
+  kExplicitEuler,        ///< Y ← Y + h f(Y), then q normalised. Order 1.
+  kSemiImplicitEuler,    ///< momenta first, then x with the new v and q ← exp(ω h) ⊗ q. Order 1.
+  kRk4,                  ///< classic Runge–Kutta on the whole Y, q normalised after the step. Order 4.
+  kRkmk4,                ///< Runge–Kutta–Munthe-Kaas: RK4 with q on the rotation group (exp, dexp⁻¹). Order 4.
+  kBuss,                 ///< Buss's augmented second-order rotation update (2000). Order 2.
+  kSymplecticSplitting,  ///< Strang splitting: exact damping, kicks, drift and split free rotations. Order 2.
+  kImplicitMidpoint,     ///< midpoint rule on body momentum, Cayley rotation (Lie–Poisson). Order 2.
+  kDopri5,               ///< Dormand–Prince 5(4), error control and dense output. Order 5.
 };
 
 /// Every method, in the order of the documentation.
@@ -29,31 +35,73 @@ const std::string& integratorName(IntegratorType type);
 /// The method called `name`; throws std::invalid_argument listing the valid names otherwise.
 IntegratorType integratorFromName(const std::string& name);
 
-/// "explicit_euler, semi_implicit_euler, rk4": the valid names, for messages.
+/// "explicit_euler, semi_implicit_euler, rk4, ...": the valid names, for messages.
 std::string integratorNameList();
+
+/// The nominal order of accuracy of a method (the global error is O(h^order)).
+int nominalOrder(IntegratorType type);
 
 /// Outcome of one step.
 enum class StepStatus {
   kOk,            ///< the state was advanced
   kInvalidStep,   ///< h was negative or not finite: the state is unchanged
   kNonFinite,     ///< the step produced a non-finite state: the state is unchanged
+  kNotConverged,  ///< an implicit solve or the step-size control failed: the state is unchanged
+};
+
+/// Settings of the methods that have them. Defaults are the node's.
+struct IntegratorSettings {
+  double abs_tolerance = 1e-9;   ///< dopri5: absolute error per step, per state component
+  double rel_tolerance = 1e-9;   ///< dopri5: relative error per step, per state component
+  /// implicit_midpoint: the Newton iteration stops when the update is below this, relative to |m|.
+  double newton_tolerance = 1e-15;
+  int newton_max_iterations = 20;  ///< implicit_midpoint: the cap, beyond which the step fails
+};
+
+/// Work counters since construction: the machine-independent cost of the method.
+struct IntegratorStatistics {
+  std::uint64_t steps = 0;              ///< calls of step() with h > 0 that succeeded
+  std::uint64_t rhs_evaluations = 0;    ///< evaluations of f(Y) (or its equivalent in the split methods)
+  std::uint64_t accepted_steps = 0;     ///< dopri5: internal steps accepted
+  std::uint64_t rejected_steps = 0;     ///< dopri5: internal steps rejected by the error control
+  std::uint64_t newton_iterations = 0;  ///< implicit_midpoint
 };
 
 /// One integrator. `step` is the public entry: it checks h, runs the method on a copy, checks the result
 /// and commits it only if it is finite, so on failure the state is unchanged (Drake's contract).
+/// dopri5 keeps its step-size controller and its last internal step (for dense output) between calls;
+/// the other methods are stateless.
 class Integrator {
  public:
-  explicit Integrator(IntegratorType type) : type_(type) {}
+  explicit Integrator(IntegratorType type, const IntegratorSettings& settings = IntegratorSettings());
 
   IntegratorType type() const { return type_; }
+  const IntegratorSettings& settings() const { return settings_; }
+  const IntegratorStatistics& statistics() const { return statistics_; }
 
   /// Advances `state` by h ≥ 0 [s] under `input`, held constant over the step. h = 0 leaves it as it is.
-  StepStatus step(const Model& model, const AppliedWrench& input, double h, State& state) const;
+  StepStatus step(const Model& model, const AppliedWrench& input, double h, State& state);
 
  private:
-  State doStep(const Model& model, const AppliedWrench& input, double h, const State& state) const;
+  StepStatus doStep(const Model& model, const AppliedWrench& input, double h, State& state);
+  StepStatus dopri5Step(const Model& model, const AppliedWrench& input, double h, State& state);
 
   IntegratorType type_;
+  IntegratorSettings settings_;
+  IntegratorStatistics statistics_;
+
+  // dopri5: the last accepted internal step [t0, t0 + h] with what dense output needs, and the size the
+  // controller proposes next. The internal solution runs ahead of the published one; it is reused only
+  // while the caller's state is the one this integrator last returned and the input has not changed.
+  struct DopriMemory {
+    bool valid = false;
+    double next_h = 0.0;
+    State last_output;
+    AppliedWrench input;
+    Eigen::Matrix<double, 13, 5> coefficients;  // rcont1..rcont5 of Hairer's DOPRI5, per component
+    double t0 = 0.0;
+    double h = 0.0;
+  } dopri_;
 };
 
 }  // namespace rigid_body

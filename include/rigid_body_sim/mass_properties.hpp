@@ -19,7 +19,8 @@ class InvalidMassProperties : public std::invalid_argument {
 class MassProperties {
  public:
   /// 1 kg with unit inertia 𝟙 kg m^2: a valid body, so that holders can be default-constructed.
-  MassProperties() : MassProperties(1.0, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Ones()) {}
+  MassProperties()
+      : MassProperties(1.0, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Ones(), Eigen::Matrix3d::Identity()) {}
 
   /// Solid box with edge lengths size = (x, y, z) [m]: I = M/12 diag(y²+z², x²+z², x²+y²).
   static MassProperties box(double mass, const Eigen::Vector3d& size);
@@ -36,15 +37,22 @@ class MassProperties {
   const Eigen::Matrix3d& inverseInertia() const { return I_Bcm_B_inv_; }///< I_Bcm_B⁻¹ [1/(kg m^2)]
   /// Principal moments in ascending order [kg m^2].
   const Eigen::Vector3d& principalMoments() const { return principal_moments_; }
+  /// R_BP: columns are the principal axes in body coordinates (a proper rotation), so that
+  /// I_Bcm_B = R_BP diag(principalMoments()) R_BPᵀ.
+  const Eigen::Matrix3d& principalAxes() const { return R_BP_; }
+  /// True when I_Bcm_B = I₀𝟙 (sphere, cube): then ω = L/I₀ in any axes.
+  bool isIsotropic() const;
 
  private:
-  MassProperties(double mass, const Eigen::Matrix3d& I_Bcm_B, const Eigen::Vector3d& principal_moments);
+  MassProperties(double mass, const Eigen::Matrix3d& I_Bcm_B, const Eigen::Vector3d& principal_moments,
+                 const Eigen::Matrix3d& R_BP);
 
   double mass_;
   double inverse_mass_;
   Eigen::Matrix3d I_Bcm_B_;
   Eigen::Matrix3d I_Bcm_B_inv_;
   Eigen::Vector3d principal_moments_;
+  Eigen::Matrix3d R_BP_;
 };
 
 }  // namespace rigid_body

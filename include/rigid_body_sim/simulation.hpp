@@ -27,7 +27,7 @@ class Simulation {
  public:
   /// dt > 0 [s]; max_substeps ≥ 1 bounds the steps one advanceTo integrates ("Fix your timestep").
   Simulation(const Model& model, const State& initial, IntegratorType integrator, double dt,
-             std::int64_t max_substeps);
+             std::int64_t max_substeps, const IntegratorSettings& settings = IntegratorSettings());
 
   /// Integrates the whole steps between the last grid point reached and `elapsed` [s] since the start.
   /// If more than max_substeps are due, the rest is dropped (the body does not move for them) and counted.
@@ -46,6 +46,7 @@ class Simulation {
   const State& state() const { return state_; }
   const Model& model() const { return model_; }
   IntegratorType integratorType() const { return integrator_.type(); }
+  const IntegratorStatistics& integratorStatistics() const { return integrator_.statistics(); }
   double dt() const { return dt_; }
   /// Grid points passed since the start, integrated or dropped: the state belongs to time clockSteps()·dt.
   std::int64_t clockSteps() const { return clock_steps_; }

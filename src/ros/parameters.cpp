@@ -25,7 +25,7 @@ constexpr double kQuaternionNormTolerance = 1e-3;
 const std::set<std::string> kTopLevelNames = {
     "rate",    "dt",      "integrator", "world_frame",    "body_frame",      "mass",           "shape",
     "size",    "inertia", "initial",    "gravity",        "linear_damping",  "angular_damping", "wrench_timeout",
-    "max_substeps", "publish_tf"};
+    "max_substeps", "publish_tf", "abs_tolerance", "rel_tolerance"};
 const std::set<std::string> kInitialNames = {"position", "orientation", "linear_velocity", "angular_velocity"};
 
 std::string render(const XmlRpcValue& value) {
@@ -230,6 +230,14 @@ NodeConfig parseConfig(const XmlRpcValue& params) {
   } catch (const std::invalid_argument&) {
     fail("integrator", *find(params, "integrator"), integrator_allowed);
   }
+  // dopri5's error control; read for every integrator so a typo is caught whichever is chosen.
+  const auto tolerance = [](double t) { return t >= 1e-15 && t <= 1.0; };
+  config.integrator_settings.abs_tolerance =
+      readNumber(params, "abs_tolerance", config.integrator_settings.abs_tolerance, tolerance,
+                 "must be a finite number in [1e-15, 1] (dopri5's absolute error per step)");
+  config.integrator_settings.rel_tolerance =
+      readNumber(params, "rel_tolerance", config.integrator_settings.rel_tolerance, tolerance,
+                 "must be a finite number in [1e-15, 1] (dopri5's relative error per step)");
   config.world_frame = readFrame(params, "world_frame", config.world_frame);
   config.body_frame = readFrame(params, "body_frame", config.body_frame);
   if (config.world_frame == config.body_frame) {
@@ -287,7 +295,12 @@ NodeConfig loadConfig(const ros::NodeHandle& private_nh) {
 std::string NodeConfig::describe() const {
   std::ostringstream out;
   const Eigen::Vector3d& I = model.mass.principalMoments();
-  out << "rate " << rate << " Hz, dt " << dt << " s, integrator " << rigid_body::integratorName(integrator)
+  out << "rate " << rate << " Hz, dt " << dt << " s, integrator " << rigid_body::integratorName(integrator);
+  if (integrator == rigid_body::IntegratorType::kDopri5) {
+    out << " (abs_tolerance " << integrator_settings.abs_tolerance << ", rel_tolerance "
+        << integrator_settings.rel_tolerance << ")";
+  }
+  out
       << ", frames " << world_frame << " -> " << body_frame << ", mass " << model.mass.mass() << " kg, shape "
       << shape << ", principal moments [" << I.x() << ", " << I.y() << ", " << I.z() << "] kg m^2, gravity ["
       << model.forces.gravity_W.transpose() << "] m/s^2, damping " << model.forces.linear_damping << " N s/m, "

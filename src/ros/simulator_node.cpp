@@ -16,7 +16,8 @@ constexpr double kTransformTimeout = 0.01;
 
 SimulatorNode::SimulatorNode(const ros::NodeHandle& nh, const NodeConfig& config)
     : config_(config),
-      simulation_(config.model, config.initial, config.integrator, config.dt, config.max_substeps),
+      simulation_(config.model, config.initial, config.integrator, config.dt, config.max_substeps,
+                  config.integrator_settings),
       nh_(nh),
       tf_listener_(tf_buffer_) {
   odom_publisher_ = nh_.advertise<nav_msgs::Odometry>("odom", 10);

@@ -31,6 +31,7 @@ struct NodeConfig {
   double rate = 100.0;  ///< timer and publish rate [Hz]
   double dt = 0.001;    ///< fixed physics step [s]
   rigid_body::IntegratorType integrator = rigid_body::IntegratorType::kRk4;
+  rigid_body::IntegratorSettings integrator_settings;  ///< abs_tolerance, rel_tolerance (dopri5)
   std::string world_frame = "world";
   std::string body_frame = "base_link";
   std::string shape = "box";                      ///< box | sphere | cylinder, or "inertia" when given directly

@@ -1,0 +1,71 @@
+// Cost of one step per integrator (Google Benchmark). Not a test: run by scripts/benchmark.sh.
+//
+// The general body has everything the step can meet: a full (non-diagonal) inertia tensor, spin, gravity,
+// linear and angular damping, and an input with world and body parts. The torque-free body is the
+// asymmetric scene of the tests. Each iteration is one step of h = 1 ms.
+#include <benchmark/benchmark.h>
+
+#include "rigid_body_sim/integrators.hpp"
+#include "rigid_body_sim/kinematics.hpp"
+
+namespace {
+
+using namespace rigid_body;
+
+Model generalModel() {
+  Eigen::Matrix3d I;
+  I << 0.02, 0.001, -0.002,  //
+      0.001, 0.05, 0.003,    //
+      -0.002, 0.003, 0.06;
+  Model model{MassProperties::fromInertia(1.5, I), ForceModel{}};
+  model.forces.gravity_W = Eigen::Vector3d(0.0, 0.0, -9.81);
+  model.forces.linear_damping = 0.1;
+  model.forces.angular_damping = 0.01;
+  return model;
+}
+
+State spinningState(const MassProperties& mass) {
+  return stateFromVelocities(mass, Eigen::Vector3d(0.0, 0.0, 1.0),
+                             Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized())),
+                             Eigen::Vector3d(0.5, 0.0, 0.0), Eigen::Vector3d(1.0, 3.0, 0.5));
+}
+
+void stepGeneralBody(benchmark::State& bench, IntegratorType type) {
+  const Model model = generalModel();
+  AppliedWrench input;
+  input.world.force = Eigen::Vector3d(0.1, 0.0, 15.0);
+  input.body.torque = Eigen::Vector3d(0.001, 0.0, 0.002);
+  State state = spinningState(model.mass);
+  Integrator integrator(type);
+  for (auto _ : bench) {
+    integrator.step(model, input, 0.001, state);
+    benchmark::DoNotOptimize(state);
+  }
+  bench.counters["rhs_per_step"] =
+      static_cast<double>(integrator.statistics().rhs_evaluations) / static_cast<double>(integrator.statistics().steps);
+}
+
+void stepTorqueFreeBody(benchmark::State& bench, IntegratorType type) {
+  const Model model{MassProperties::fromInertia(1.0, Eigen::Vector3d(1, 2, 3).asDiagonal().toDenseMatrix()),
+                    ForceModel{}};
+  State state;
+  state.L_W = Eigen::Vector3d(1.0, 0.5, 2.0);
+  Integrator integrator(type);
+  for (auto _ : bench) {
+    integrator.step(model, AppliedWrench(), 0.001, state);
+    benchmark::DoNotOptimize(state);
+  }
+}
+
+int registerAll() {
+  for (IntegratorType type : allIntegrators()) {
+    benchmark::RegisterBenchmark(("general/" + integratorName(type)).c_str(), stepGeneralBody, type);
+    benchmark::RegisterBenchmark(("torque_free/" + integratorName(type)).c_str(), stepTorqueFreeBody, type);
+  }
+  return 0;
+}
+const int registered = registerAll();
+
+}  // namespace
+
+BENCHMARK_MAIN();

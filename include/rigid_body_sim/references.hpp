@@ -1,0 +1,76 @@
+// Closed-form solutions to test integrators against, from shared/REFERENCES.md §2 (each checked there
+// against a fine RK4 run). Not integrators: every value comes from a formula, or for the asymmetric body's
+// orientation from a quadrature of a closed-form rate.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace rigid_body {
+namespace reference {
+
+/// §2.4 Constant force F [N] on mass m [kg]: x(t) = x₀ + v₀t + F t²/(2m).
+Eigen::Vector3d ballisticPosition(const Eigen::Vector3d& x0, const Eigen::Vector3d& v0, const Eigen::Vector3d& force,
+                                  double mass, double t);
+
+/// §2.6 Linear damping m v̇ = −c v: v(t) = v₀ e^(−ct/m).
+Eigen::Vector3d dampedVelocity(const Eigen::Vector3d& v0, double damping, double mass, double t);
+
+/// §2.5 Sphere (I = I₀𝟙) at rest under a constant body-fixed torque τ_b: q(t) = q₀ ⊗ exp(θ(t) τ̂_b),
+/// θ = |τ_b| t²/(2 I₀).
+Eigen::Quaterniond sphereUnderBodyTorque(const Eigen::Quaterniond& q0, double I0, const Eigen::Vector3d& tau_B,
+                                         double t);
+
+/// §2.1 Torque-free symmetric top, I = diag(I⊥, I⊥, I_s) in body axes, world momentum L_W:
+/// q(t) = exp(t L_W/I⊥) ⊗ q₀ ⊗ exp(t (1/I_s − 1/I⊥) m₃ e₃), m₃ = (q₀⁻¹ L_W)_z.
+Eigen::Quaterniond symmetricTop(double I_perp, double I_s, const Eigen::Quaterniond& q0, const Eigen::Vector3d& L_W,
+                                double t);
+
+/// §2.2 Torque-free asymmetric body with principal moments I₁ < I₂ < I₃ along the body axes, by Jacobi
+/// elliptic functions (Leroy's cancellation-free form, both cases of sign Δ₂, both signs σ) and the
+/// orientation by the semi-exact quadrature R(t) = Q₀ Rot_{e_a}(ψ(t)) P(t).
+class TorqueFreeBody {
+ public:
+  /// m0_B: initial body angular momentum [kg m²/s]; q0: initial orientation. Throws std::invalid_argument
+  /// unless I₁ < I₂ < I₃ and the motion is away from the separatrix (|Δ₂|/G² > 1e-9) and m0 ≠ 0.
+  TorqueFreeBody(const Eigen::Vector3d& principal_moments, const Eigen::Vector3d& m0_B, const Eigen::Quaterniond& q0);
+
+  /// Body angular momentum m(t) [kg m²/s].
+  Eigen::Vector3d bodyMomentum(double t) const;
+  /// Orientation q(t), body to world.
+  Eigen::Quaterniond orientation(double t) const;
+  /// World angular momentum (constant) [kg m²/s].
+  const Eigen::Vector3d& worldMomentum() const { return L_W_; }
+  /// Kinetic energy T = ½ Σ m_i²/I_i (constant) [J].
+  double energy() const { return 0.5 * two_T_; }
+  /// Period of m(t): 4K(k²)/λ [s].
+  double period() const;
+  /// §2.3 Time between sign changes of m₂ (the intermediate-axis flip): 2K(k²)/λ [s].
+  double flipTime() const { return 0.5 * period(); }
+  /// The modulus squared k² and the rate λ [1/s] of the elliptic solution.
+  double modulusSquared() const { return k2_; }
+  double lambda() const { return lambda_; }
+
+ private:
+  // m(t) in the relabelled frame (σ = +1 after the flip S = Rot_{e₂}(π) when needed).
+  Eigen::Vector3d relabelledMomentum(double t) const;
+  // ψ̇ = (2T + G m_a/I_a)/(G + m_a) on the relabelled momentum.
+  double psiRate(double t) const;
+  // P(t): the minimal rotation taking m(t) to G e_a.
+  Eigen::Quaterniond alignToAxis(const Eigen::Vector3d& m) const;
+
+  Eigen::Vector3d I_;
+  Eigen::Vector3d L_W_;
+  double G_;
+  double two_T_;
+  bool circulates_about_3_;  // Δ₂ > 0: the dn axis a is 3; otherwise 1
+  bool flipped_;             // σ = −1: solved in the frame relabelled by S = Rot_{e₂}(π)
+  double k2_;
+  double lambda_;
+  Eigen::Vector3d B_;        // amplitudes (B₁, B₂ or B₂′, B₃)
+  double nu_;                // phase ν = F(φ₀|k²)
+  Eigen::Quaterniond Q0_;    // R₀' P(0)ᵀ in the relabelled frame
+};
+
+}  // namespace reference
+}  // namespace rigid_body

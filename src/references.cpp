@@ -1,0 +1,136 @@
+#include "rigid_body_sim/references.hpp"
+
+#include <boost/math/quadrature/gauss.hpp>
+#include <boost/math/special_functions/ellint_1.hpp>
+#include <boost/math/special_functions/jacobi_elliptic.hpp>
+#include <cmath>
+#include <stdexcept>
+
+#include "rigid_body_sim/rotation.hpp"
+
+namespace rigid_body {
+namespace reference {
+
+namespace {
+// Keep away from the separatrix Δ₂ = 0, where k → 1 and the elliptic form degenerates (REFERENCES §2.2).
+constexpr double kSeparatrixGuard = 1e-9;
+// ψ is integrated with 20-point Gauss–Legendre on sub-intervals of at most T_m/64 (REFERENCES §2.2 finds
+// 16 points on T_m/64 accurate to 2.7e-13 rad).
+constexpr int kQuadratureSubintervalsPerPeriod = 64;
+
+// S = Rot_{e₂}(π), the relabelling for σ = −1.
+const Eigen::Quaterniond kFlip(0.0, 0.0, 1.0, 0.0);
+}  // namespace
+
+Eigen::Vector3d ballisticPosition(const Eigen::Vector3d& x0, const Eigen::Vector3d& v0, const Eigen::Vector3d& force,
+                                  double mass, double t) {
+  return x0 + v0 * t + force * (t * t / (2.0 * mass));
+}
+
+Eigen::Vector3d dampedVelocity(const Eigen::Vector3d& v0, double damping, double mass, double t) {
+  return v0 * std::exp(-damping * t / mass);
+}
+
+Eigen::Quaterniond sphereUnderBodyTorque(const Eigen::Quaterniond& q0, double I0, const Eigen::Vector3d& tau_B,
+                                         double t) {
+  const double theta = tau_B.norm() * t * t / (2.0 * I0);
+  return q0 * quaternionExp(theta * tau_B.normalized());
+}
+
+Eigen::Quaterniond symmetricTop(double I_perp, double I_s, const Eigen::Quaterniond& q0, const Eigen::Vector3d& L_W,
+                                double t) {
+  const double m3 = (q0.conjugate() * L_W).z();
+  return quaternionExp(t * L_W / I_perp) * q0 * quaternionExp(Eigen::Vector3d(0.0, 0.0, t * (1.0 / I_s - 1.0 / I_perp) * m3));
+}
+
+TorqueFreeBody::TorqueFreeBody(const Eigen::Vector3d& I, const Eigen::Vector3d& m0_B, const Eigen::Quaterniond& q0)
+    : I_(I) {
+  if (!(I(0) < I(1) && I(1) < I(2))) throw std::invalid_argument("TorqueFreeBody needs I1 < I2 < I3");
+  const double I1 = I(0), I2 = I(1), I3 = I(2);
+  const double m1 = m0_B(0), m2 = m0_B(1), m3 = m0_B(2);
+  G_ = m0_B.norm();
+  if (!(G_ > 0.0)) throw std::invalid_argument("TorqueFreeBody needs m0 != 0");
+  two_T_ = m1 * m1 / I1 + m2 * m2 / I2 + m3 * m3 / I3;
+  L_W_ = q0 * m0_B;
+  // Δᵢ = G² − 2T Iᵢ written without cancellation (Leroy).
+  const double delta1 = m2 * m2 * (I2 - I1) / I2 + m3 * m3 * (I3 - I1) / I3;
+  const double delta3 = m1 * m1 * (I1 - I3) / I1 + m2 * m2 * (I2 - I3) / I2;
+  const double delta2 = m1 * m1 * (I1 - I2) / I1 + m3 * m3 * (I3 - I2) / I3;
+  if (std::abs(delta2) <= kSeparatrixGuard * G_ * G_) {
+    throw std::invalid_argument("TorqueFreeBody: initial momentum on the separatrix (Delta2 ~ 0)");
+  }
+  circulates_about_3_ = delta2 > 0.0;
+  const double m_a = circulates_about_3_ ? m3 : m1;  // the dn component keeps its sign
+  flipped_ = m_a < 0.0;
+  // In the relabelled frame m' = S m: S = Rot_{e₂}(π) negates components 1 and 3.
+  const Eigen::Vector3d m = flipped_ ? Eigen::Vector3d(-m1, m2, -m3) : m0_B;
+  const Eigen::Quaterniond q0_relabelled = flipped_ ? Eigen::Quaterniond(q0 * kFlip.conjugate()) : q0;
+
+  B_(0) = std::sqrt(-delta3 * I1 / (I3 - I1));
+  B_(2) = std::sqrt(delta1 * I3 / (I3 - I1));
+  double phi0;
+  if (circulates_about_3_) {
+    k2_ = (I2 - I1) * (-delta3) / ((I3 - I2) * delta1);
+    lambda_ = std::sqrt(delta1 * (I3 - I2) / (I1 * I2 * I3));
+    B_(1) = std::sqrt(-delta3 * I2 / (I3 - I2));
+    phi0 = std::atan2(m(1) / B_(1), m(0) / B_(0));
+  } else {
+    k2_ = (I3 - I2) * delta1 / ((I2 - I1) * (-delta3));
+    lambda_ = std::sqrt(-delta3 * (I2 - I1) / (I1 * I2 * I3));
+    B_(1) = std::sqrt(delta1 * I2 / (I2 - I1));
+    phi0 = std::atan2(m(1) / B_(1), m(2) / B_(2));
+  }
+  nu_ = boost::math::ellint_1(std::sqrt(k2_), phi0);  // Boost takes the modulus k, not k²
+  Q0_ = q0_relabelled * alignToAxis(relabelledMomentum(0.0)).conjugate();
+}
+
+Eigen::Vector3d TorqueFreeBody::relabelledMomentum(double t) const {
+  // u = −σλt − ν with σ = +1 in the relabelled frame.
+  const double u = -lambda_ * t - nu_;
+  double cn, dn;
+  const double sn = boost::math::jacobi_elliptic(std::sqrt(k2_), u, &cn, &dn);
+  if (circulates_about_3_) return Eigen::Vector3d(B_(0) * cn, -B_(1) * sn, B_(2) * dn);
+  return Eigen::Vector3d(B_(0) * dn, -B_(1) * sn, B_(2) * cn);
+}
+
+Eigen::Vector3d TorqueFreeBody::bodyMomentum(double t) const {
+  const Eigen::Vector3d m = relabelledMomentum(t);
+  return flipped_ ? Eigen::Vector3d(-m(0), m(1), -m(2)) : m;
+}
+
+double TorqueFreeBody::period() const {
+  return 4.0 * boost::math::ellint_1(std::sqrt(k2_)) / lambda_;
+}
+
+Eigen::Quaterniond TorqueFreeBody::alignToAxis(const Eigen::Vector3d& m) const {
+  const double G = G_;
+  if (circulates_about_3_) {
+    const double s = std::sqrt(2.0 * G * (G + m(2)));
+    return Eigen::Quaterniond(std::sqrt((1.0 + m(2) / G) / 2.0), m(1) / s, -m(0) / s, 0.0);
+  }
+  const double s = std::sqrt(2.0 * G * (G + m(0)));
+  return Eigen::Quaterniond(std::sqrt((1.0 + m(0) / G) / 2.0), 0.0, m(2) / s, -m(1) / s);
+}
+
+double TorqueFreeBody::psiRate(double t) const {
+  const Eigen::Vector3d m = relabelledMomentum(t);
+  const int a = circulates_about_3_ ? 2 : 0;
+  return (two_T_ + G_ * m(a) / I_(a)) / (G_ + m(a));
+}
+
+Eigen::Quaterniond TorqueFreeBody::orientation(double t) const {
+  const int intervals =
+      std::max(1, static_cast<int>(std::ceil(std::abs(t) / period() * kQuadratureSubintervalsPerPeriod)));
+  const double width = t / intervals;
+  double psi = 0.0;
+  for (int i = 0; i < intervals; ++i) {
+    psi += boost::math::quadrature::gauss<double, 20>::integrate([this](double s) { return psiRate(s); }, i * width,
+                                                                 (i + 1) * width);
+  }
+  const Eigen::Vector3d axis = circulates_about_3_ ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
+  const Eigen::Quaterniond relabelled = Q0_ * quaternionExp(psi * axis) * alignToAxis(relabelledMomentum(t));
+  return flipped_ ? Eigen::Quaterniond(relabelled * kFlip) : relabelled;
+}
+
+}  // namespace reference
+}  // namespace rigid_body
