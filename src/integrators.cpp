@@ -258,38 +258,42 @@ StepStatus strangSplitting(const Model& model, const AppliedWrench& input, doubl
   return StepStatus::kOk;
 }
 
-// The free-body flow split into exactly solvable parts (Touma & Wisdom 1994; Fassò 2003): with the
-// principal moments Λ and a reference moment I_r,
-//   H = G²/(2 I_r) + Σ_{i≠r} ½(1/I_i − 1/I_r) m_i².
-// G²/(2I_r) turns the body about the fixed world L by t·G/I_r; each other term turns it about its own
-// principal axis u_i by t(1/I_i − 1/I_r)m_i, where m_i = u_i·(Rᵀ L) stays constant along that flow. All
-// of these keep R m = L. The G² flow commutes with the rest; the others are composed symmetrically
-// (outer h/2, inner h, outer h/2): second order.
-// The ordering: reference = the middle moment, outer = the smallest, inner = the largest. Of the six, it
-// measured best or within 6 % of best on four bodies (asymmetric, Dzhanibekov, thin rod, near-flat; the
-// thin rod's error 5.8e-9 rad against 2.8e-3 for the worst ordering). A symmetric top needs no special
-// case: two equal moments make one coefficient (1/I_i − 1/I_r) zero, that flow is the identity and the
-// remaining exact flows give the top's exact motion (REFERENCES §2.1).
-struct SplittingAxes {
-  int reference = 1;
-  int outer = 0;
-  int inner = 2;
-};
+// The free-body flow H = Σ m_i²/(2 I_i) split into exactly solvable parts (McLachlan 1993; Touma & Wisdom
+// 1994; Fassò 2003). A term c·m_i²/2 turns the body about its own principal axis u_i by t·c·m_i, where
+// m_i = u_i·(Rᵀ L) stays constant along that flow, and G²/(2 I_r) turns it about the fixed world L by
+// t·G/I_r. Every one of these keeps R m = L, so world L is exact.
+//
+// Asymmetric body: the three principal-axis rotations c = 1/I_i, composed symmetrically as
+//   a(h/2) b(h/2) c(h) b(h/2) a(h/2),  a = smallest moment, b = middle, c = largest.
+// Of the six orderings this one measured best in both energy and orientation (asymmetric body at
+// h = 50 ms over 10⁵ steps: |ΔE/E| 9.8e-6 against up to 4.9e-4; T handle 1.8e-5; thin rod at 1 ms 1.6e-7).
+// Symmetric top (two equal moments I_r): H = G²/(2 I_r) + ½(1/I_s − 1/I_r) m_s², two commuting exact flows:
+// the top's exact motion (REFERENCES §2.1), and for a sphere a single rotation about L.
+constexpr double kEqualMoments = 1e-12;  // relative difference below which two moments count as equal
 
-void rotateAboutBodyAxis(const MassProperties& mass, int axis, double t, double I_r, State& s) {
+void rotateAboutBodyAxis(const MassProperties& mass, int axis, double t, double inverse_reference, State& s) {
   const Eigen::Vector3d u_B = mass.principalAxes().col(axis);
   const double m_i = u_B.dot(s.q_WB.conjugate() * s.L_W);
   const double I_i = mass.principalMoments()(axis);
-  s.q_WB = s.q_WB * quaternionExp((t * (1.0 / I_i - 1.0 / I_r) * m_i) * u_B);
+  s.q_WB = s.q_WB * quaternionExp((t * (1.0 / I_i - inverse_reference) * m_i) * u_B);
 }
 
 StepStatus splitFreeRotation(const MassProperties& mass, double h, State& s) {
-  const SplittingAxes axes;
-  const double I_r = mass.principalMoments()(axes.reference);
-  rotateAboutBodyAxis(mass, axes.outer, 0.5 * h, I_r, s);
-  rotateAboutBodyAxis(mass, axes.inner, h, I_r, s);
-  rotateAboutBodyAxis(mass, axes.outer, 0.5 * h, I_r, s);
-  s.q_WB = quaternionExp((h / I_r) * s.L_W) * s.q_WB;
+  const Eigen::Vector3d& I = mass.principalMoments();  // ascending
+  const double tolerance = kEqualMoments * I(2);
+  if (I(1) - I(0) <= tolerance || I(2) - I(1) <= tolerance) {
+    // The odd axis s is the one not in the equal pair (either end; for a sphere its term vanishes).
+    const int odd = I(1) - I(0) <= tolerance ? 2 : 0;
+    const double I_r = I(1);
+    rotateAboutBodyAxis(mass, odd, h, 1.0 / I_r, s);
+    s.q_WB = quaternionExp((h / I_r) * s.L_W) * s.q_WB;
+    return StepStatus::kOk;
+  }
+  rotateAboutBodyAxis(mass, 0, 0.5 * h, 0.0, s);
+  rotateAboutBodyAxis(mass, 1, 0.5 * h, 0.0, s);
+  rotateAboutBodyAxis(mass, 2, h, 0.0, s);
+  rotateAboutBodyAxis(mass, 1, 0.5 * h, 0.0, s);
+  rotateAboutBodyAxis(mass, 0, 0.5 * h, 0.0, s);
   return StepStatus::kOk;
 }
 

@@ -63,7 +63,7 @@ MassProperties MassProperties::cylinder(double mass, double radius, double lengt
   return fromInertia(mass, Eigen::Vector3d(transverse, transverse, axial).asDiagonal().toDenseMatrix());
 }
 
-MassProperties MassProperties::fromInertia(double mass, const Eigen::Matrix3d& I) {
+MassProperties MassProperties::fromInertia(double mass, const Eigen::Matrix3d& I, InertiaCheck check) {
   requirePositiveFinite(mass, "mass", "kg");
   if (!I.allFinite()) throw InvalidMassProperties("inertia must be finite");
   const double scale = I.cwiseAbs().maxCoeff();
@@ -80,7 +80,7 @@ MassProperties MassProperties::fromInertia(double mass, const Eigen::Matrix3d& I
                                 formatNumber(moments(0)) + " kg m^2");
   }
   // Principal moments of a real mass distribution obey I_max ≤ I_a + I_b (equality for a flat plate).
-  if (moments(2) > (moments(0) + moments(1)) * (1.0 + kRelativeTolerance)) {
+  if (check == InertiaCheck::kPhysical && moments(2) > (moments(0) + moments(1)) * (1.0 + kRelativeTolerance)) {
     throw InvalidMassProperties("inertia violates the triangle inequality of principal moments: " +
                                 formatNumber(moments(2)) + " > " + formatNumber(moments(0)) + " + " +
                                 formatNumber(moments(1)) + " kg m^2");

@@ -37,7 +37,7 @@ Eigen::Vector3d quaternionLog(const Eigen::Quaterniond& q) {
 
 double rotationAngleBetween(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
   const Eigen::Quaterniond d = a.conjugate() * b;
-  return 2.0 * std::atan2(d.vec().norm(), std::abs(d.w()));
+  return 2.0 * std::atan2(d.vec().stableNorm(), std::abs(d.w()));  // stableNorm: angles down to 1e-300
 }
 
 }  // namespace rigid_body

@@ -13,9 +13,18 @@ class InvalidMassProperties : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+/// How strictly fromInertia checks a tensor.
+enum class InertiaCheck {
+  kPhysical,              ///< symmetric positive definite and the triangle inequality: a real mass distribution
+  kPositiveDefiniteOnly,  ///< symmetric positive definite only: for the published numerical test bodies that
+                          ///< break the triangle inequality (Principia's I = (3, 3, 9) and (3, 5, 9)); never
+                          ///< for user input
+};
+
 /// Constant mass properties of a body: mass and inertia about the centre of mass in body axes.
 /// Made only through the factories below, which validate; so a MassProperties always holds
-/// a positive mass and a symmetric positive-definite inertia that satisfies the triangle inequality.
+/// a positive mass and a symmetric positive-definite inertia that (unless explicitly exempted with
+/// InertiaCheck::kPositiveDefiniteOnly) satisfies the triangle inequality.
 class MassProperties {
  public:
   /// 1 kg with unit inertia 𝟙 kg m^2: a valid body, so that holders can be default-constructed.
@@ -29,7 +38,8 @@ class MassProperties {
   /// Solid cylinder of radius r and length l [m] along body z: I_xx = I_yy = M(3r² + l²)/12, I_zz = M r²/2.
   static MassProperties cylinder(double mass, double radius, double length);
   /// A full inertia tensor about the centre of mass [kg m^2], body axes.
-  static MassProperties fromInertia(double mass, const Eigen::Matrix3d& I_Bcm_B);
+  static MassProperties fromInertia(double mass, const Eigen::Matrix3d& I_Bcm_B,
+                                    InertiaCheck check = InertiaCheck::kPhysical);
 
   double mass() const { return mass_; }                                 ///< M [kg]
   double inverseMass() const { return inverse_mass_; }                  ///< 1/M [1/kg]

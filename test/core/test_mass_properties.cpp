@@ -90,3 +90,14 @@ TEST(MassProperties, RefusesNonPhysicalTensors) {
   with_nan(2, 2) = std::nan("");
   EXPECT_THROW(MassProperties::fromInertia(1.0, with_nan), InvalidMassProperties);
 }
+
+TEST(MassProperties, PublishedNonPhysicalTestBodiesNeedTheExplicitExemption) {
+  // Principia's Dzhanibekov body breaks the triangle inequality (9 > 3 + 5): refused unless exempted.
+  const Eigen::Matrix3d principia = Eigen::Vector3d(3.0, 5.0, 9.0).asDiagonal();
+  EXPECT_THROW(MassProperties::fromInertia(1.0, principia), InvalidMassProperties);
+  EXPECT_NO_THROW(MassProperties::fromInertia(1.0, principia, rigid_body::InertiaCheck::kPositiveDefiniteOnly));
+  // The exemption does not extend to tensors that are not positive definite.
+  EXPECT_THROW(MassProperties::fromInertia(1.0, Eigen::Vector3d(0.0, 5.0, 9.0).asDiagonal().toDenseMatrix(),
+                                           rigid_body::InertiaCheck::kPositiveDefiniteOnly),
+               InvalidMassProperties);
+}

@@ -1,0 +1,26 @@
+// The stiff and extreme suite of the accuracy report: each case run with every integrator, measured, and
+// judged against the threshold of issue 4 for the methods that claim it (the others are reported).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace accuracy_report {
+
+struct StabilityRow {
+  std::string case_name;   ///< e.g. "thin_rod"
+  std::string integrator;  ///< integrator name
+  std::string metric;      ///< what `value` is, with its unit
+  double value;            ///< the measured value
+  std::string threshold;   ///< the rule, e.g. "<= 1e-4"; empty when only reported
+  bool claimed;            ///< whether this method claims the threshold
+  bool pass;               ///< value meets the threshold (meaningful when threshold is set)
+};
+
+/// Runs the suite. `quick` shortens the long run (10⁵ instead of 10⁶ steps) and the bisections.
+std::vector<StabilityRow> runStabilitySuite(bool quick);
+
+/// One line per case: what was run, for the report.
+std::vector<std::pair<std::string, std::string>> stabilityCaseDescriptions(bool quick);
+
+}  // namespace accuracy_report

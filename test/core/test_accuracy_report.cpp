@@ -1,0 +1,148 @@
+// Runs `accuracy_report --quick` into a temporary folder and holds its numbers to their promises: the files
+// exist and parse, the fitted orders are the nominal ones, rk4 beats explicit Euler by orders of magnitude
+// at equal h, and every threshold a method claims in the stiff and extreme suite is met.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+// Splits one CSV line; a field in double quotes may hold commas.
+std::vector<std::string> fields(const std::string& line) {
+  std::vector<std::string> out;
+  std::string field;
+  bool quoted = false;
+  for (char c : line) {
+    if (c == '"') {
+      quoted = !quoted;
+    } else if (c == ',' && !quoted) {
+      out.push_back(field);
+      field.clear();
+    } else {
+      field += c;
+    }
+  }
+  out.push_back(field);
+  return out;
+}
+
+// Rows as maps from the header's column names.
+std::vector<std::map<std::string, std::string>> readCsv(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::map<std::string, std::string>> rows;
+  std::string line;
+  if (!std::getline(in, line)) return rows;
+  const std::vector<std::string> header = fields(line);
+  while (std::getline(in, line)) {
+    const std::vector<std::string> values = fields(line);
+    if (values.size() != header.size()) {
+      ADD_FAILURE() << path << ": a row with " << values.size() << " fields: " << line;
+      continue;
+    }
+    std::map<std::string, std::string> row;
+    for (size_t i = 0; i < header.size(); ++i) row[header[i]] = values[i];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+bool exists(const std::string& path) { return std::ifstream(path).good(); }
+
+class AccuracyReport : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    char pattern[] = "/tmp/accuracy_report_test_XXXXXX";
+    directory_ = mkdtemp(pattern);
+    const std::string command = std::string(ACCURACY_REPORT_PATH) + " --quick --out " + directory_ + " 2>&1";
+    exit_code_ = std::system(command.c_str());
+  }
+  static void TearDownTestSuite() { std::system(("rm -rf " + directory_).c_str()); }
+  static std::string file(const std::string& name) { return directory_ + "/" + name; }
+
+  static std::string directory_;
+  static int exit_code_;
+};
+
+std::string AccuracyReport::directory_;
+int AccuracyReport::exit_code_ = -1;
+
+}  // namespace
+
+TEST_F(AccuracyReport, WritesEveryFile) {
+  ASSERT_EQ(exit_code_, 0);
+  for (const char* name : {"REPORT.md", "work_precision.csv", "order.csv", "control_rate.csv", "error_growth.csv",
+                           "stability.csv"}) {
+    EXPECT_TRUE(exists(file(name))) << name;
+  }
+  // Figures when gnuplot is there (scripts/test.sh installs it).
+  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
+    for (const char* name : {"order.png", "control_rate.png", "error_growth.png", "work_precision_dzhanibekov.png",
+                             "work_precision_asymmetric.png", "work_precision_ballistic.png"}) {
+      EXPECT_TRUE(exists(file(name))) << name;
+    }
+  }
+  std::ifstream report(file("REPORT.md"));
+  const std::string text((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("## Which integrator when"), std::string::npos);
+  EXPECT_NE(text.find("## Stiff and extreme suite"), std::string::npos);
+}
+
+TEST_F(AccuracyReport, FittedOrdersAreTheNominalOrders) {
+  const auto rows = readCsv(file("order.csv"));
+  ASSERT_FALSE(rows.empty());
+  std::map<std::string, bool> seen;
+  for (const auto& row : rows) {
+    EXPECT_NEAR(std::stod(row.at("fitted_order")), std::stod(row.at("nominal_order")), 0.3) << row.at("integrator");
+    seen[row.at("integrator")] = true;
+  }
+  EXPECT_EQ(seen.size(), 7u);  // every fixed-step method
+}
+
+TEST_F(AccuracyReport, Rk4BeatsExplicitEulerByOrdersOfMagnitudeAtEqualStep) {
+  std::map<std::string, std::map<std::string, double>> error;  // [scene/h][integrator]
+  for (const auto& row : readCsv(file("work_precision.csv"))) {
+    error[row.at("scene") + "@" + row.at("h")][row.at("integrator")] = std::stod(row.at("error"));
+  }
+  int compared = 0;
+  for (const char* scene : {"asymmetric", "symmetric_top", "dzhanibekov", "off_centre_push"}) {
+    for (const char* h : {"0.005", "0.001"}) {
+      const auto& at = error[std::string(scene) + "@" + h];
+      ASSERT_TRUE(at.count("rk4") && at.count("explicit_euler")) << scene << " " << h;
+      EXPECT_LT(at.at("rk4"), 1e-3 * at.at("explicit_euler")) << scene << " h = " << h;
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 8);
+}
+
+TEST_F(AccuracyReport, EveryClaimedThresholdIsMet) {
+  const auto rows = readCsv(file("stability.csv"));
+  ASSERT_GT(rows.size(), 100u);
+  int claims = 0;
+  std::map<std::string, bool> cases;
+  for (const auto& row : rows) {
+    cases[row.at("case")] = true;
+    if (row.at("claimed") != "yes" || row.at("threshold").empty()) continue;
+    ++claims;
+    EXPECT_EQ(row.at("pass"), "yes") << row.at("case") << " / " << row.at("integrator") << " / " << row.at("metric")
+                                     << " = " << row.at("value") << " (" << row.at("threshold") << ")";
+  }
+  EXPECT_GT(claims, 100);
+  for (const char* name : {"thin_rod", "thin_rod_1e-4", "high_spin", "dzhanibekov_130s", "near_zero_omega",
+                           "scale_1e-9_1e9", "large_step_1s", "stiff_damping", "long_run"}) {
+    EXPECT_TRUE(cases.count(name)) << name;
+  }
+}
+
+TEST_F(AccuracyReport, ErrorGrowthCoversEveryIntegrator) {
+  std::map<std::string, int> samples;
+  for (const auto& row : readCsv(file("error_growth.csv"))) ++samples[row.at("integrator")];
+  EXPECT_EQ(samples.size(), 8u);
+  for (const auto& entry : samples) EXPECT_GE(entry.second, 900) << entry.first;
+}
