@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
   for (const std::string& name : config.unknown_parameters) {
     ROS_WARN("unknown parameter ~%s is ignored (a typo?)", name.c_str());
   }
-  rigid_body_ros::SimulatorNode node(nh, config);
+  rigid_body_ros::SimulatorNode node(nh, private_nh, config);
   ros::Time::waitForValid();  // under /use_sim_time, until the first /clock message
   node.start(ros::Time::now());
   ros::spin();

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "rigid_body_sim/kinematics.hpp"
+
 namespace rigid_body {
 
 namespace {
@@ -27,25 +29,75 @@ Simulation::Simulation(const Model& model, const State& initial, IntegratorType 
   if (!isFinite(initial)) throw std::invalid_argument("the initial state must be finite");
 }
 
+const char* divergenceName(Divergence divergence) {
+  switch (divergence) {
+    case Divergence::kNone:
+      return "none";
+    case Divergence::kNonFiniteState:
+      return "non-finite state";
+    case Divergence::kEnergyGrowth:
+      return "energy growth beyond max_energy_growth";
+    case Divergence::kStepFailure:
+      return "integrator step failure";
+  }
+  return "unknown";
+}
+
+namespace {
+
+bool noInput(const AppliedWrench& input) {
+  return input.world.force.isZero(0.0) && input.world.torque.isZero(0.0) && input.body.force.isZero(0.0) &&
+         input.body.torque.isZero(0.0);
+}
+
+
+}  // namespace
+
 AdvanceResult Simulation::advanceTo(double elapsed) {
   AdvanceResult result;
-  const std::int64_t due = wholeStepsIn(elapsed, dt_) - clock_steps_;
+  const std::int64_t due = anchor_steps_ + wholeStepsIn(elapsed - anchor_elapsed_, dt_) - clock_steps_;
   if (due <= 0) return result;
   const std::int64_t steps = std::min(due, max_substeps_);
   result.dropped = due - steps;
   dropped_steps_ += result.dropped;
   clock_steps_ += due;
+  if (divergence_ != Divergence::kNone) return result;  // frozen at the last good state until reset()
+
+  const State before = state_;
   for (std::int64_t k = 0; k < steps; ++k) {
     result.status = integrator_.step(model_, input_, dt_, state_);
     if (result.status != StepStatus::kOk) break;
     ++result.steps;
   }
+  if (result.status == StepStatus::kNonFinite || result.status == StepStatus::kNotConverged) {
+    divergence_ = result.status == StepStatus::kNonFinite ? Divergence::kNonFiniteState : Divergence::kStepFailure;
+  } else if (std::isfinite(max_energy_growth_) && noInput(input_)) {
+    // With no commanded wrench the mechanical energy E = T + V cannot grow (damping only removes it). A
+    // method's error may move it in proportion to the energy in play: E itself and the work of gravity
+    // W = M g·Δx over the call (explicit Euler under gravity gains O(h) of W). A growth beyond
+    // (max_energy_growth − 1) times that budget is a blow-up. All terms scale with the body: no absolute floor.
+    const double kinetic_before = kineticEnergy(model_.mass, before);
+    const double gravity_work = model_.mass.mass() * model_.forces.gravity_W.dot(state_.p_WB - before.p_WB);
+    const double growth = kineticEnergy(model_.mass, state_) - gravity_work - kinetic_before;
+    const double budget = (max_energy_growth_ - 1.0) * (kinetic_before + std::abs(gravity_work));
+    if (!(growth <= budget * (1.0 + 1e-9))) divergence_ = Divergence::kEnergyGrowth;
+  }
+  if (divergence_ != Divergence::kNone) {
+    state_ = before;  // the last good state: the one before the call that diverged
+    result.diverged = true;
+  }
   return result;
+}
+
+void Simulation::reanchor(double elapsed) {
+  anchor_steps_ = clock_steps_;
+  anchor_elapsed_ = elapsed;
 }
 
 void Simulation::reset() {
   state_ = initial_;
   clearInput();
+  divergence_ = Divergence::kNone;
 }
 
 bool Simulation::setState(const State& state) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 
 #include "rigid_body_sim/dynamics.hpp"
 #include "rigid_body_sim/integrators.hpp"
@@ -15,7 +16,18 @@ struct AdvanceResult {
   std::int64_t steps = 0;    ///< steps integrated
   std::int64_t dropped = 0;  ///< steps due but skipped because of the max_substeps cap (time lost)
   StepStatus status = StepStatus::kOk;  ///< kNonFinite if a step failed; the state is then the last good one
+  bool diverged = false;     ///< this call latched the divergence state (see Simulation::divergence)
 };
+
+/// Why the simulation stopped integrating; kNone while it runs.
+enum class Divergence {
+  kNone,
+  kNonFiniteState,  ///< a step produced NaN or Inf (e.g. a momentum that overflowed)
+  kEnergyGrowth,    ///< the energy grew by more than max_energy_growth in one call with nothing to explain it
+  kStepFailure,     ///< the integrator gave up (implicit solve or step-size control)
+};
+
+const char* divergenceName(Divergence divergence);
 
 /// Whole steps of length dt that fit into `elapsed` seconds: ⌊elapsed/dt⌋, with a relative guard so that
 /// e.g. 0.03/0.001 = 29.999999999999996 counts as 30.
@@ -29,17 +41,29 @@ class Simulation {
   Simulation(const Model& model, const State& initial, IntegratorType integrator, double dt,
              std::int64_t max_substeps, const IntegratorSettings& settings = IntegratorSettings());
 
+  /// The divergence guard: when no wrench is commanded, the mechanical energy E = T + V may not grow by more
+  /// than this factor (> 1) within one advanceTo; physics allows no growth at all then (damping only
+  /// removes energy), so a larger growth is a numerical blow-up. Infinity disables the check.
+  void setMaxEnergyGrowth(double factor) { max_energy_growth_ = factor; }
+
   /// Integrates the whole steps between the last grid point reached and `elapsed` [s] since the start.
   /// If more than max_substeps are due, the rest is dropped (the body does not move for them) and counted.
+  /// After a divergence the clock still advances but the state stays the last good one until reset().
   AdvanceResult advanceTo(double elapsed);
+
+  /// Re-anchors the clock: the next advanceTo counts grid points from `elapsed` on (after ROS time jumped
+  /// backwards). The state is kept; clockSteps() keeps counting up from where it is.
+  void reanchor(double elapsed);
 
   /// Replaces the input from the next step on.
   void setInput(const AppliedWrench& input) { input_ = input; }
   void clearInput() { input_ = AppliedWrench(); }
   const AppliedWrench& input() const { return input_; }
 
-  /// Back to the initial state with no input; the clock count keeps running.
+  /// Back to the initial state with no input, the divergence cleared; the clock count keeps running.
   void reset();
+
+  Divergence divergence() const { return divergence_; }
   /// Replaces the state (kept only if finite; returns whether it was).
   bool setState(const State& state);
 
@@ -51,6 +75,8 @@ class Simulation {
   /// Grid points passed since the start, integrated or dropped: the state belongs to time clockSteps()·dt.
   std::int64_t clockSteps() const { return clock_steps_; }
   std::int64_t droppedSteps() const { return dropped_steps_; }
+  /// The state and energy at the last reset (or construction), for drift diagnostics.
+  const State& initialState() const { return initial_; }
 
  private:
   Model model_;
@@ -62,6 +88,10 @@ class Simulation {
   std::int64_t max_substeps_;
   std::int64_t clock_steps_ = 0;
   std::int64_t dropped_steps_ = 0;
+  std::int64_t anchor_steps_ = 0;  // grid points counted before the last reanchor
+  double anchor_elapsed_ = 0.0;    // elapsed time of the last reanchor [s]
+  double max_energy_growth_ = std::numeric_limits<double>::infinity();
+  Divergence divergence_ = Divergence::kNone;
 };
 
 }  // namespace rigid_body

@@ -25,7 +25,7 @@ constexpr double kQuaternionNormTolerance = 1e-3;
 const std::set<std::string> kTopLevelNames = {
     "rate",    "dt",      "integrator", "world_frame",    "body_frame",      "mass",           "shape",
     "size",    "inertia", "initial",    "gravity",        "linear_damping",  "angular_damping", "wrench_timeout",
-    "max_substeps", "publish_tf", "abs_tolerance", "rel_tolerance"};
+    "max_substeps", "publish_tf", "abs_tolerance", "rel_tolerance", "max_force", "max_torque", "max_energy_growth"};
 const std::set<std::string> kInitialNames = {"position", "orientation", "linear_velocity", "angular_velocity"};
 
 std::string render(const XmlRpcValue& value) {
@@ -267,6 +267,16 @@ NodeConfig parseConfig(const XmlRpcValue& params) {
 
   config.wrench_timeout = readNumber(params, "wrench_timeout", 0.0, [](double t) { return t >= 0.0; },
                                      "must be a finite number >= 0 [s] (0: hold until the next wrench)");
+  // Not set: no limit (the check still runs and refuses non-finite wrenches).
+  config.wrench_limits.max_force = readNumber(params, "max_force", config.wrench_limits.max_force,
+                                              [](double f) { return f > 0.0; },
+                                              "must be a finite number > 0 [N] (leave it unset for no limit)");
+  config.wrench_limits.max_torque = readNumber(params, "max_torque", config.wrench_limits.max_torque,
+                                               [](double t) { return t > 0.0; },
+                                               "must be a finite number > 0 [N m] (leave it unset for no limit)");
+  config.max_energy_growth = readNumber(params, "max_energy_growth", config.max_energy_growth,
+                                        [](double g) { return g > 1.0; },
+                                        "must be a finite number > 1 (energy factor per tick)");
   const XmlRpcValue* substeps = find(params, "max_substeps");
   if (substeps) {
     if (substeps->getType() != XmlRpcValue::TypeInt || static_cast<int>(*const_cast<XmlRpcValue*>(substeps)) < 1) {
@@ -305,7 +315,8 @@ std::string NodeConfig::describe() const {
       << shape << ", principal moments [" << I.x() << ", " << I.y() << ", " << I.z() << "] kg m^2, gravity ["
       << model.forces.gravity_W.transpose() << "] m/s^2, damping " << model.forces.linear_damping << " N s/m, "
       << model.forces.angular_damping << " N m s/rad, wrench_timeout " << wrench_timeout << " s, max_substeps "
-      << max_substeps << ", publish_tf " << (publish_tf ? "true" : "false");
+      << max_substeps << ", max_force " << wrench_limits.max_force << " N, max_torque " << wrench_limits.max_torque
+      << " N m, max_energy_growth " << max_energy_growth << ", publish_tf " << (publish_tf ? "true" : "false");
   return out.str();
 }
 

@@ -15,88 +15,17 @@
 #include <memory>
 
 #include "rigid_body_sim/RigidBodyState.h"
+#include "test_helpers.hpp"
 
 namespace {
 
-// The longest any single wait may take [s, wall time]; rostest's time-limit bounds the whole file.
-constexpr double kWaitLimit = 10.0;
-
-bool waitUntil(const std::function<bool()>& condition, double timeout = kWaitLimit) {
-  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
-  while (!condition()) {
-    if (ros::WallTime::now() > deadline || !ros::ok()) return false;
-    ros::spinOnce();
-    ros::WallDuration(0.001).sleep();
-  }
-  return true;
-}
-
-void spinFor(double seconds) {
-  waitUntil([] { return false; }, seconds);
-}
-
-template <typename Message>
-class Recorder {
- public:
-  Recorder(ros::NodeHandle& nh, const std::string& topic)
-      : subscriber_(nh.subscribe(topic, 1000, &Recorder::onMessage, this)) {}
-  void onMessage(const Message& message) { messages.push_back(message); }
-  bool waitForCount(size_t count) {
-    return waitUntil([&] { return messages.size() >= count; });
-  }
-  /// Waits for the first message stamped after `stamp`.
-  bool waitForStampAfter(const ros::Time& stamp, Message& out) {
-    return waitUntil([&] {
-      if (messages.empty() || messages.back().header.stamp <= stamp) return false;
-      out = messages.back();
-      return true;
-    });
-  }
-  std::vector<Message> messages;
-
- private:
-  ros::Subscriber subscriber_;
-};
-
-Eigen::Vector3d worldVelocity(const nav_msgs::Odometry& odom) {
-  Eigen::Quaterniond q_WB;
-  Eigen::Vector3d v_B;
-  tf2::fromMsg(odom.pose.pose.orientation, q_WB);
-  tf2::fromMsg(odom.twist.twist.linear, v_B);
-  return q_WB * v_B;
-}
-
-Eigen::Vector3d position(const nav_msgs::Odometry& odom) {
-  Eigen::Vector3d p;
-  tf2::fromMsg(odom.pose.pose.position, p);
-  return p;
-}
-
-bool allFinite(const nav_msgs::Odometry& odom) {
-  const auto& p = odom.pose.pose;
-  const auto& t = odom.twist.twist;
-  for (double value : {p.position.x, p.position.y, p.position.z, p.orientation.x, p.orientation.y, p.orientation.z,
-                       p.orientation.w, t.linear.x, t.linear.y, t.linear.z, t.angular.x, t.angular.y, t.angular.z}) {
-    if (!std::isfinite(value)) return false;
-  }
-  return true;
-}
-
-geometry_msgs::WrenchStamped wrench(const std::string& frame, double fx, double fy, double fz) {
-  geometry_msgs::WrenchStamped message;
-  message.header.frame_id = frame;
-  message.header.stamp = ros::Time::now();
-  message.wrench.force.x = fx;
-  message.wrench.force.y = fy;
-  message.wrench.force.z = fz;
-  return message;
-}
+using namespace test_helpers;
 
 class NodeBehaviour : public ::testing::Test {
  protected:
   ros::Publisher advertiseWrench(const std::string& ns) {
-    ros::Publisher publisher = nh_.advertise<geometry_msgs::WrenchStamped>(ns + "/wrench", 10);
-    EXPECT_TRUE(waitUntil([&] { return publisher.getNumSubscribers() > 0; })) << ns << "/wrench has no subscriber";
+    ros::Publisher publisher = test_helpers::advertiseWrench(nh_, ns);
+    EXPECT_GT(publisher.getNumSubscribers(), 0u) << ns << "/wrench has no subscriber";
     return publisher;
   }
   ros::NodeHandle nh_;

@@ -46,6 +46,8 @@ TEST(Parameters, DefaultsAreTheDefaultScene) {
   EXPECT_EQ(config.wrench_timeout, 0.0);
   EXPECT_TRUE(config.publish_tf);
   EXPECT_TRUE(config.unknown_parameters.empty());
+  EXPECT_TRUE(std::isinf(config.wrench_limits.max_force));  // no limit unless set
+  EXPECT_EQ(config.max_energy_growth, 2.0);
 }
 
 TEST(Parameters, ReadsEveryKey) {
@@ -65,6 +67,9 @@ TEST(Parameters, ReadsEveryKey) {
   params["max_substeps"] = 20;
   params["publish_tf"] = false;
   params["abs_tolerance"] = 1e-7;
+  params["max_force"] = 50.0;
+  params["max_torque"] = 5;
+  params["max_energy_growth"] = 1.5;
   params["rel_tolerance"] = 1e-6;
   params["initial"]["position"] = list({1.0, 2.0, 3.0});
   params["initial"]["orientation"] = list({0.0, 0.0, std::sqrt(0.5), std::sqrt(0.5)});
@@ -84,6 +89,9 @@ TEST(Parameters, ReadsEveryKey) {
   EXPECT_EQ(config.max_substeps, 20);
   EXPECT_FALSE(config.publish_tf);
   EXPECT_EQ(config.integrator_settings.abs_tolerance, 1e-7);
+  EXPECT_EQ(config.wrench_limits.max_force, 50.0);
+  EXPECT_EQ(config.wrench_limits.max_torque, 5.0);
+  EXPECT_EQ(config.max_energy_growth, 1.5);
   EXPECT_EQ(config.integrator_settings.rel_tolerance, 1e-6);
   EXPECT_EQ(config.initial.p_WB, Eigen::Vector3d(1.0, 2.0, 3.0));
   // v is given in world axes, ω in body axes: P = M v, L = R I ω_B.
@@ -125,6 +133,9 @@ TEST(Parameters, EachInvalidValueNamesTheParameterAndTheRule) {
       {"wrench_timeout", XmlRpcValue(-1), "parameter ~wrench_timeout = -1: must be a finite number >= 0 [s]"},
       {"max_substeps", XmlRpcValue(0), "parameter ~max_substeps = 0: must be an integer >= 1"},
       {"publish_tf", XmlRpcValue(std::string("yes")), "parameter ~publish_tf = 'yes': must be true or false"},
+      {"max_force", XmlRpcValue(-5.0), "parameter ~max_force = -5: must be a finite number > 0 [N]"},
+      {"max_torque", XmlRpcValue(std::string("lots")), "parameter ~max_torque = 'lots': must be a finite number > 0 [N m]"},
+      {"max_energy_growth", XmlRpcValue(1.0), "parameter ~max_energy_growth = 1: must be a finite number > 1"},
       {"abs_tolerance", XmlRpcValue(0.0), "parameter ~abs_tolerance = 0: must be a finite number in [1e-15, 1]"},
       {"rel_tolerance", XmlRpcValue(2), "parameter ~rel_tolerance = 2: must be a finite number in [1e-15, 1]"},
       {"world_frame", XmlRpcValue(std::string("/world")), "parameter ~world_frame = '/world': must be a non-empty tf2 frame id"},

@@ -12,6 +12,7 @@
 #include "rigid_body_sim/dynamics.hpp"
 #include "rigid_body_sim/integrators.hpp"
 #include "rigid_body_sim/state.hpp"
+#include "rigid_body_sim/wrench_limits.hpp"
 
 namespace ros {
 class NodeHandle;
@@ -41,6 +42,8 @@ struct NodeConfig {
   Eigen::Vector3d initial_linear_velocity_W = Eigen::Vector3d::Zero();   ///< [m/s], world axes
   Eigen::Vector3d initial_angular_velocity_B = Eigen::Vector3d::Zero();  ///< [rad/s], body axes
   double wrench_timeout = 0.0;       ///< [s]; 0: a wrench holds until the next one
+  rigid_body::WrenchLimits wrench_limits;  ///< max_force [N], max_torque [N m]; infinite when not set
+  double max_energy_growth = 2.0;    ///< divergence guard: energy factor per tick with no wrench commanded
   std::int64_t max_substeps = 1000;  ///< steps one tick may integrate; the rest is dropped and counted
   bool publish_tf = true;            ///< broadcast world_frame → body_frame
   std::vector<std::string> unknown_parameters;  ///< names set but not known (typos), for a warning

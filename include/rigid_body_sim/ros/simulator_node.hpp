@@ -1,7 +1,9 @@
 // The ROS node around one simulated body: wrench in, tf2 + odometry + state out, a timer that only calls
-// update(now). It owns the core Simulation as a member and adds nothing to the physics.
+// update(now), and diagnostics. It owns the core Simulation as a member and adds nothing to the physics.
 #pragma once
 
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <diagnostic_updater/update_functions.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <geometry_msgs/WrenchStamped.h>
 #include <nav_msgs/Odometry.h>
@@ -19,27 +21,38 @@
 
 namespace rigid_body_ros {
 
-/// Counts of what the node refused or lost since start-up.
+/// Counts of what the node applied, refused or lost since start-up.
 struct Counters {
   std::uint64_t wrenches_applied = 0;
-  std::uint64_t rejected_non_finite = 0;    ///< wrenches with a NaN or Inf component
-  std::uint64_t rejected_unknown_frame = 0; ///< wrenches in a frame tf2 could not resolve
-  std::uint64_t dropped_steps = 0;          ///< steps beyond max_substeps in one tick
-  std::uint64_t failed_steps = 0;           ///< steps whose result was not finite (state kept)
-  std::uint64_t wrench_timeouts = 0;        ///< transitions to zero wrench after wrench_timeout
+  std::uint64_t rejected_non_finite = 0;     ///< wrenches with a NaN or Inf component
+  std::uint64_t rejected_force_limit = 0;    ///< |F| above max_force
+  std::uint64_t rejected_torque_limit = 0;   ///< |τ| above max_torque
+  std::uint64_t rejected_unknown_frame = 0;  ///< wrenches in a frame tf2 could not resolve
+  std::uint64_t dropped_steps = 0;           ///< steps beyond max_substeps in one tick
+  std::uint64_t wrench_timeouts = 0;         ///< transitions to zero wrench after wrench_timeout
+  std::uint64_t backward_time_jumps = 0;     ///< ROS time went back by more than one tick period
+  std::uint64_t timer_overruns = 0;          ///< ticks that took longer than the timer period
+  std::int64_t last_substeps = 0;            ///< steps integrated by the last tick
+  std::int64_t max_substeps_seen = 0;        ///< most steps one tick integrated
+
+  std::uint64_t rejected() const {
+    return rejected_non_finite + rejected_force_limit + rejected_torque_limit + rejected_unknown_frame;
+  }
 };
 
 class SimulatorNode {
  public:
-  /// `nh` carries the namespace of the topics and the reset service. Creates publishers, the subscriber
-  /// and the service; the clock starts with start().
-  SimulatorNode(const ros::NodeHandle& nh, const NodeConfig& config);
+  /// `nh` carries the namespace of the topics and the reset service, `private_nh` the diagnostics'
+  /// settings. Creates publishers, the subscriber, the service and the diagnostics; the clock starts with
+  /// start().
+  SimulatorNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const NodeConfig& config);
 
   /// Anchors simulated time 0 at `start_time` and starts the timer at config.rate.
   void start(const ros::Time& start_time);
 
   /// One tick: integrates the whole steps due up to `now` and publishes the state if the clock reached a
-  /// new grid point. Published stamps are start + clock steps · dt, so they strictly increase.
+  /// new grid point. Published stamps advance by whole steps of dt from the anchor, so they strictly
+  /// increase (a backward jump of ROS time re-anchors them to the new time).
   void update(const ros::Time& now);
 
   void onWrench(const geometry_msgs::WrenchStamped::ConstPtr& message);
@@ -55,6 +68,7 @@ class SimulatorNode {
   void expireWrench(const ros::Time& now);
   void publish();
   ros::Time stampOf(std::int64_t clock_steps) const;
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   NodeConfig config_;
   rigid_body::Simulation simulation_;
@@ -69,12 +83,23 @@ class SimulatorNode {
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
+  diagnostic_updater::Updater diagnostics_;
+  double min_frequency_;  ///< bounds of the publish-rate status [Hz]
+  double max_frequency_;
+  diagnostic_updater::FrequencyStatus publish_frequency_;
 
-  ros::Time start_time_;
+  ros::Time start_time_;            ///< simulated time 0
+  ros::Time anchor_time_;           ///< stamps are anchor_time_ + (clock steps − anchor_clock_steps_)·dt
+  std::int64_t anchor_clock_steps_ = 0;
+  ros::Time last_now_;              ///< the latest time seen, to detect backward jumps
   bool started_ = false;
   std::int64_t published_clock_steps_ = -1;  ///< the clock step of the last publication
   bool wrench_active_ = false;               ///< a wrench is applied and may time out
+  bool wrench_timed_out_ = false;
   ros::Time last_wrench_time_;
+  rigid_body::Divergence reported_divergence_ = rigid_body::Divergence::kNone;
+  double max_norm_error_ = 0.0;              ///< max ||q| − 1| since reset
+  std::uint64_t reported_problems_ = 0;      ///< rejections, drops and overruns at the last diagnostics
 
   // Messages whose constant fields (frame ids, covariances) are filled once.
   nav_msgs::Odometry odom_message_;

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Load benchmark (not a test): a real roscore, the node on the default scene, wrenches at 10 kHz for 10 s.
+# Reports the publish rate held, whether the last wrench applied is the last one sent, the node's CPU share
+# and its timer overruns. Usage: scripts/load_test.sh [RATE_HZ=10000] [SECONDS=10]
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+install_dependencies
+build_workspace
+source_workspace
+export ROS_MASTER_URI=http://localhost:11411  # a master of our own, beside any other
+roscore -p 11411 >/dev/null 2>&1 &
+core=$!
+trap 'kill $node $core 2>/dev/null; wait 2>/dev/null' EXIT
+sleep 3
+rosrun rigid_body_sim rigid_body_node __ns:=load >/dev/null 2>&1 &
+node=$!
+sleep 2
+echo "machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'); node: default scene (rate 100 Hz, dt 1 ms)"
+"$WORKSPACE/devel/lib/rigid_body_sim/wrench_load" /load "$(pgrep -f 'rigid_body_node __ns:=load' | head -1)" "${1:-10000}" "${2:-10}"
