@@ -1,6 +1,7 @@
 #include "rigid_body_sim/ros/parameters.hpp"
 
 #include <ros/node_handle.h>
+#include <ros/package.h>
 #include <ros/param.h>
 
 #include <cmath>
@@ -10,6 +11,8 @@
 
 #include "rigid_body_sim/kinematics.hpp"
 #include "rigid_body_sim/mass_properties.hpp"
+#include "rigid_body_sim/mesh_io.hpp"
+#include "rigid_body_sim/mesh_mass_properties.hpp"
 
 namespace rigid_body_ros {
 
@@ -25,7 +28,8 @@ constexpr double kQuaternionNormTolerance = 1e-3;
 const std::set<std::string> kTopLevelNames = {
     "rate",    "dt",      "integrator", "world_frame",    "body_frame",      "mass",           "shape",
     "size",    "inertia", "initial",    "gravity",        "linear_damping",  "angular_damping", "wrench_timeout",
-    "max_substeps", "publish_tf", "abs_tolerance", "rel_tolerance", "max_force", "max_torque", "max_energy_growth"};
+    "max_substeps", "publish_tf", "abs_tolerance", "rel_tolerance", "max_force", "max_torque", "max_energy_growth",
+    "mesh", "scale", "density", "inertia_method", "samples", "principal_axes", "mesh_frame"};
 const std::set<std::string> kInitialNames = {"position", "orientation", "linear_velocity", "angular_velocity"};
 
 std::string render(const XmlRpcValue& value) {
@@ -159,7 +163,66 @@ std::string readFrame(const XmlRpcValue& params, const std::string& name, const 
   return frame;
 }
 
+bool readBool(const XmlRpcValue& params, const std::string& name, bool fallback) {
+  const XmlRpcValue* value = find(params, name);
+  if (!value) return fallback;
+  if (value->getType() != XmlRpcValue::TypeBoolean) fail(name, *value, "must be true or false");
+  return static_cast<bool>(*const_cast<XmlRpcValue*>(value));
+}
+
+// shape: mesh. The body frame is the mesh's centre of mass, with the mesh's axes or its principal axes.
+rigid_body::MassProperties readMeshMassProperties(const XmlRpcValue& params, NodeConfig& config) {
+  const std::string uri = readString(params, "mesh", "", "must be a mesh file path or package:// URI (.stl, .obj)");
+  if (uri.empty()) fail("mesh", find(params, "mesh") ? *find(params, "mesh") : XmlRpcValue(std::string()),
+                        "must be set for shape mesh: a file path or package:// URI (.stl, .obj)");
+  config.mesh_path = resolveMeshUri(uri);
+  rigid_body::MeshMassOptions options;
+  const double scale = readNumber(params, "scale", 1.0, [](double s) { return s > 0.0; },
+                                  "must be a finite number > 0 (mesh units to metres)");
+  const bool has_mass = find(params, "mass") != nullptr, has_density = find(params, "density") != nullptr;
+  if (has_mass && has_density) fail("density", *find(params, "density"), "give ~mass or ~density, not both");
+  if (!has_mass && !has_density) {
+    fail("mass", XmlRpcValue(std::string()), "for shape mesh, give ~mass [kg] or ~density [kg/m^3]");
+  }
+  options.mass = readNumber(params, "mass", 0.0, [](double m) { return m > 0.0; }, "must be a finite number > 0 [kg]");
+  options.density = readNumber(params, "density", 0.0, [](double d) { return d > 0.0; },
+                               "must be a finite number > 0 [kg/m^3]");
+  const std::string method_allowed = "must be one of: exact, sampling, bounding_box, oriented_bounding_box";
+  const std::string method = readString(params, "inertia_method", "exact", method_allowed);
+  try {
+    options.method = rigid_body::inertiaMethodFromName(method);
+  } catch (const std::invalid_argument&) {
+    fail("inertia_method", *find(params, "inertia_method"), method_allowed);
+  }
+  const XmlRpcValue* samples = find(params, "samples");
+  if (samples) {
+    if (samples->getType() != XmlRpcValue::TypeInt || static_cast<int>(*const_cast<XmlRpcValue*>(samples)) < 1) {
+      fail("samples", *samples, "must be an integer >= 1 (points drawn for inertia_method sampling)");
+    }
+    options.samples = static_cast<std::uint64_t>(static_cast<int>(*const_cast<XmlRpcValue*>(samples)));
+  }
+  const bool principal_axes = readBool(params, "principal_axes", false);
+  try {
+    const rigid_body::MeshMassProperties properties =
+        rigid_body::meshMassProperties(rigid_body::transformed(rigid_body::loadMesh(config.mesh_path), scale), options);
+    config.mesh_warnings = properties.warnings;
+    const rigid_body::MeshBody body = rigid_body::meshBody(properties, principal_axes);
+    config.X_MB = body.X_MB;
+    config.size.clear();
+    return body.mass;
+  } catch (const rigid_body::MeshError& error) {
+    fail("mesh", *find(params, "mesh"), error.what());
+  } catch (const rigid_body::InvalidMassProperties& error) {
+    fail("mesh", *find(params, "mesh"), std::string("gives no physical inertia: ") + error.what());
+  }
+}
+
 rigid_body::MassProperties readMassProperties(const XmlRpcValue& params, NodeConfig& config) {
+  const std::string shape_allowed = "must be one of: box, sphere, cylinder, mesh (or give ~inertia)";
+  if (!find(params, "inertia") && readString(params, "shape", "box", shape_allowed) == "mesh") {
+    config.shape = "mesh";
+    return readMeshMassProperties(params, config);
+  }
   const double mass = readNumber(params, "mass", 1.0, [](double m) { return m > 0.0; }, "must be a finite number > 0 [kg]");
   if (find(params, "inertia")) {
     const std::vector<double> i = readNumbers(params, "inertia", {}, 6,
@@ -177,7 +240,6 @@ rigid_body::MassProperties readMassProperties(const XmlRpcValue& params, NodeCon
            std::string(error.what()) + " (a symmetric positive-definite tensor about the centre of mass)");
     }
   }
-  const std::string shape_allowed = "must be one of: box, sphere, cylinder (or give ~inertia)";
   config.shape = readString(params, "shape", "box", shape_allowed);
   std::string size_allowed;
   size_t length = 0;
@@ -284,16 +346,29 @@ NodeConfig parseConfig(const XmlRpcValue& params) {
     }
     config.max_substeps = static_cast<int>(*const_cast<XmlRpcValue*>(substeps));
   }
-  const XmlRpcValue* publish_tf = find(params, "publish_tf");
-  if (publish_tf) {
-    if (publish_tf->getType() != XmlRpcValue::TypeBoolean) fail("publish_tf", *publish_tf, "must be true or false");
-    config.publish_tf = static_cast<bool>(*const_cast<XmlRpcValue*>(publish_tf));
+  config.publish_tf = readBool(params, "publish_tf", true);
+  config.mesh_frame = readString(params, "mesh_frame", "", "must be a tf2 frame id");
+  if (!config.mesh_frame.empty()) {
+    if (config.shape != "mesh") fail("mesh_frame", *find(params, "mesh_frame"), "is only for shape mesh");
+    config.mesh_frame = readFrame(params, "mesh_frame", "");
   }
   collectUnknown(params, "", kTopLevelNames, config.unknown_parameters);
   if (const XmlRpcValue* initial = find(params, "initial")) {
     collectUnknown(*initial, "initial/", kInitialNames, config.unknown_parameters);
   }
   return config;
+}
+
+std::string resolveMeshUri(const std::string& uri) {
+  const std::string scheme = "package://";
+  if (uri.compare(0, scheme.size(), scheme) != 0) return uri;
+  const std::string rest = uri.substr(scheme.size());
+  const std::string package = rest.substr(0, rest.find('/'));
+  const std::string path = ros::package::getPath(package);
+  if (path.empty()) {
+    throw ParameterError("parameter ~mesh = '" + uri + "': package '" + package + "' not found (is its workspace sourced?)");
+  }
+  return path + rest.substr(package.size());
 }
 
 NodeConfig loadConfig(const ros::NodeHandle& private_nh) {
@@ -312,7 +387,7 @@ std::string NodeConfig::describe() const {
   }
   out
       << ", frames " << world_frame << " -> " << body_frame << ", mass " << model.mass.mass() << " kg, shape "
-      << shape << ", principal moments [" << I.x() << ", " << I.y() << ", " << I.z() << "] kg m^2, gravity ["
+      << shape << (mesh_path.empty() ? "" : " '" + mesh_path + "'") << ", principal moments [" << I.x() << ", " << I.y() << ", " << I.z() << "] kg m^2, gravity ["
       << model.forces.gravity_W.transpose() << "] m/s^2, damping " << model.forces.linear_damping << " N s/m, "
       << model.forces.angular_damping << " N m s/rad, wrench_timeout " << wrench_timeout << " s, max_substeps "
       << max_substeps << ", max_force " << wrench_limits.max_force << " N, max_torque " << wrench_limits.max_torque

@@ -58,6 +58,24 @@ void SimulatorNode::start(const ros::Time& start_time) {
     if ((ros::WallTime::now() - begin).toSec() > period) ++counters_.timer_overruns;
   });
   ROS_INFO("rigid_body_node: %s", config_.describe().c_str());
+  if (!config_.mesh_path.empty()) {
+    const Eigen::Vector3d& c = config_.X_MB.translation();
+    const Eigen::Quaterniond q_MB(config_.X_MB.linear());
+    ROS_INFO("rigid_body_node: body frame %s = mesh frame moved to the centre of mass (%g, %g, %g) m and turned by "
+             "q = [%g, %g, %g, %g] (x, y, z, w)%s",
+             config_.body_frame.c_str(), c.x(), c.y(), c.z(), q_MB.x(), q_MB.y(), q_MB.z(), q_MB.w(),
+             config_.mesh_frame.empty() ? "" : ("; published as tf " + config_.body_frame + " -> " + config_.mesh_frame).c_str());
+    for (const std::string& warning : config_.mesh_warnings) ROS_WARN("rigid_body_node: %s", warning.c_str());
+  }
+  if (!config_.mesh_frame.empty()) {
+    // The mesh's own frame relative to the body frame, X_BM = X_MB⁻¹, so visuals can hang on it.
+    mesh_frame_broadcaster_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
+    geometry_msgs::TransformStamped X_BM = tf2::eigenToTransform(Eigen::Affine3d(config_.X_MB.inverse().matrix()));
+    X_BM.header.stamp = start_time;
+    X_BM.header.frame_id = config_.body_frame;
+    X_BM.child_frame_id = config_.mesh_frame;
+    mesh_frame_broadcaster_->sendTransform(X_BM);
+  }
 }
 
 ros::Time SimulatorNode::stampOf(std::int64_t clock_steps) const {

@@ -59,7 +59,9 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"shape", "_shape:=cone", "parameter ~shape = 'cone'"},
                       Case{"inertia", "_inertia:='[1,1,5,0,0,0]'", "inertia violates the triangle inequality"},
                       Case{"orientation", "_initial/orientation:='[0,0,0,3]'", "parameter ~initial/orientation"},
-                      Case{"damping", "_linear_damping:=-1", "parameter ~linear_damping = -1"}),
+                      Case{"damping", "_linear_damping:=-1", "parameter ~linear_damping = -1"},
+                      Case{"mesh", "_shape:=mesh _mass:=1.0 _mesh:=/nonexistent/part.stl",
+                           "parameter ~mesh = '/nonexistent/part.stl': cannot open mesh file"}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 TEST(GoodParameters, TheSameBinaryRunsWithValidOnes) {

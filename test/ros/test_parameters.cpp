@@ -189,3 +189,59 @@ TEST(Parameters, UnknownNamesAreReported) {
   EXPECT_EQ(config.unknown_parameters[0], "mas");
   EXPECT_EQ(config.unknown_parameters[1], "initial/postion");
 }
+
+TEST(Parameters, MeshBodyFromAFileOrAPackageUri) {
+  XmlRpcValue params;
+  params["shape"] = std::string("mesh");
+  params["mesh"] = std::string(TEST_MESH_DIR "/l_bracket.obj");
+  params["density"] = 2700.0;
+  params["principal_axes"] = true;
+  const NodeConfig config = parseConfig(params);
+  EXPECT_EQ(config.shape, "mesh");
+  // (2·0.1 − 0.02)·0.02·0.005 m³ of aluminium.
+  EXPECT_NEAR(config.model.mass.mass(), 2700.0 * 0.18 * 0.02 * 0.005, 1e-12);
+  const Eigen::Matrix3d& I = config.model.mass.inertia();
+  EXPECT_LT(std::abs(I(0, 1)), 1e-12 * I.norm());  // principal axes: diagonal
+  EXPECT_GT(config.X_MB.translation().x(), 0.0);   // the centre of mass, in the mesh frame
+  EXPECT_TRUE(config.unknown_parameters.empty());
+
+  // The same file by package:// (rospack finds this package in the test environment).
+  XmlRpcValue by_uri = params;
+  by_uri["mesh"] = std::string("package://rigid_body_sim/test/meshes/l_bracket.obj");
+  EXPECT_EQ(parseConfig(by_uri).model.mass.mass(), config.model.mass.mass());
+  EXPECT_EQ(rigid_body_ros::resolveMeshUri("/abs/file.stl"), "/abs/file.stl");
+}
+
+TEST(Parameters, MeshProblemsNameTheParameter) {
+  const auto meshParams = [](const std::string& file) {
+    XmlRpcValue params;
+    params["shape"] = std::string("mesh");
+    params["mesh"] = std::string(TEST_MESH_DIR) + file;
+    params["mass"] = 1.0;
+    return params;
+  };
+  EXPECT_NE(errorOf(meshParams("/open_box.obj")).find("parameter ~mesh = '"), std::string::npos);
+  EXPECT_NE(errorOf(meshParams("/open_box.obj")).find("mesh is not closed"), std::string::npos);
+  EXPECT_NE(errorOf(meshParams("/missing.stl")).find("cannot open mesh file"), std::string::npos);
+  XmlRpcValue both = meshParams("/box.obj");
+  both["density"] = 1000.0;
+  EXPECT_NE(errorOf(both).find("give ~mass or ~density, not both"), std::string::npos) << errorOf(both);
+  XmlRpcValue no_mass;
+  no_mass["shape"] = std::string("mesh");
+  no_mass["mesh"] = std::string(TEST_MESH_DIR "/box.obj");
+  EXPECT_NE(errorOf(no_mass).find("give ~mass [kg] or ~density"), std::string::npos) << errorOf(no_mass);
+  XmlRpcValue no_file;
+  no_file["shape"] = std::string("mesh");
+  EXPECT_NE(errorOf(no_file).find("parameter ~mesh"), std::string::npos) << errorOf(no_file);
+  XmlRpcValue method = meshParams("/box.obj");
+  method["inertia_method"] = std::string("guess");
+  EXPECT_NE(errorOf(method).find("parameter ~inertia_method = 'guess'"), std::string::npos);
+  XmlRpcValue package = meshParams("/box.obj");
+  package["mesh"] = std::string("package://no_such_package/box.stl");
+  EXPECT_NE(errorOf(package).find("package 'no_such_package' not found"), std::string::npos) << errorOf(package);
+  XmlRpcValue frame;
+  frame["mesh_frame"] = std::string("visual");
+  EXPECT_NE(errorOf(frame).find("is only for shape mesh"), std::string::npos);
+  // An inside-out mesh is repaired, with a warning for the log.
+  EXPECT_EQ(parseConfig(meshParams("/inside_out_box.obj")).mesh_warnings.size(), 1u);
+}

@@ -35,7 +35,7 @@ struct NodeConfig {
   rigid_body::IntegratorSettings integrator_settings;  ///< abs_tolerance, rel_tolerance (dopri5)
   std::string world_frame = "world";
   std::string body_frame = "base_link";
-  std::string shape = "box";                      ///< box | sphere | cylinder, or "inertia" when given directly
+  std::string shape = "box";                      ///< box | sphere | cylinder | mesh, or "inertia" when given directly
   std::vector<double> size = {0.4, 0.2, 0.1};     ///< shape dimensions [m]
   rigid_body::Model model;                        ///< mass properties and force models
   rigid_body::State initial;                      ///< the state at start-up and after reset
@@ -46,6 +46,11 @@ struct NodeConfig {
   double max_energy_growth = 2.0;    ///< divergence guard: energy factor per tick with no wrench commanded
   std::int64_t max_substeps = 1000;  ///< steps one tick may integrate; the rest is dropped and counted
   bool publish_tf = true;            ///< broadcast world_frame → body_frame
+  // shape: mesh
+  std::string mesh_path;             ///< the resolved file of ~mesh
+  std::string mesh_frame;            ///< if set, a static tf body_frame → mesh_frame is published
+  Eigen::Isometry3d X_MB = Eigen::Isometry3d::Identity();  ///< pose of the body frame in the mesh frame
+  std::vector<std::string> mesh_warnings;  ///< repairs made to the mesh, for the start-up log
   std::vector<std::string> unknown_parameters;  ///< names set but not known (typos), for a warning
 
   /// One line with the effective values, for the start-up log.
@@ -56,6 +61,10 @@ struct NodeConfig {
 /// means "all defaults"). Throws ParameterError on the first invalid parameter. Names the node does not
 /// know (e.g. "mas", "initial/postion") go to unknown_parameters.
 NodeConfig parseConfig(const XmlRpc::XmlRpcValue& params);
+
+/// A ~mesh value as a file path: "package://PKG/rel" becomes PKG's path (rospack) + "/rel"; anything else is
+/// returned as it is. Throws ParameterError if the package is unknown.
+std::string resolveMeshUri(const std::string& uri);
 
 /// Reads the private namespace of `private_nh` and parses it.
 NodeConfig loadConfig(const ros::NodeHandle& private_nh);

@@ -10,10 +10,12 @@
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
 #include <tf2_ros/buffer.h>
+#include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
 
 #include <cstdint>
+#include <memory>
 
 #include "rigid_body_sim/RigidBodyState.h"
 #include "rigid_body_sim/ros/parameters.hpp"
@@ -83,6 +85,7 @@ class SimulatorNode {
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
+  std::unique_ptr<tf2_ros::StaticTransformBroadcaster> mesh_frame_broadcaster_;  ///< only with ~mesh_frame
   diagnostic_updater::Updater diagnostics_;
   double min_frequency_;  ///< bounds of the publish-rate status [Hz]
   double max_frequency_;

@@ -1,0 +1,219 @@
+// Mass properties from meshes: the exact method against closed forms, sampling's 1/√N convergence, the
+// bounding box's known ratio on a sphere, and every way a mesh can be unusable.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "rigid_body_sim/mass_properties.hpp"
+#include "rigid_body_sim/mesh_io.hpp"
+#include "rigid_body_sim/mesh_mass_properties.hpp"
+#include "rigid_body_sim/mesh_primitives.hpp"
+
+using namespace rigid_body;
+
+namespace {
+
+const std::string kMeshes = TEST_MESH_DIR;
+
+MeshMassProperties exactOf(const TriangleMesh& mesh, double mass = 2.0) {
+  MeshMassOptions options;
+  options.mass = mass;
+  return meshMassProperties(mesh, options);
+}
+
+double relativeError(const Eigen::Matrix3d& actual, const Eigen::Matrix3d& expected) {
+  return (actual - expected).norm() / expected.norm();
+}
+
+}  // namespace
+
+TEST(MeshMassProperties, ExactBoxEqualsTheClosedFormInEveryFormat) {
+  const Eigen::Vector3d size(0.4, 0.2, 0.1);
+  const Eigen::Matrix3d expected = MassProperties::box(2.0, size).inertia();
+  for (const TriangleMesh& mesh : {primitives::box(size), loadMesh(kMeshes + "/box.obj"), loadMesh(kMeshes + "/box_ascii.stl")}) {
+    const MeshMassProperties p = exactOf(mesh);
+    EXPECT_NEAR(p.volume, 0.008, 1e-15);
+    EXPECT_LT(p.p_MBcm.norm(), 1e-15);
+    EXPECT_LT(relativeError(p.I_Bcm_M, expected), 1e-12);
+  }
+  // A binary STL stores float32 corners: exact for that polyhedron, 1e-7 from the double box.
+  EXPECT_LT(relativeError(exactOf(loadMesh(kMeshes + "/box_binary.stl")).I_Bcm_M, expected), 1e-6);
+}
+
+TEST(MeshMassProperties, ExactTetrahedronEqualsTheCovarianceFormula) {
+  // ∫ r rᵀ dV = V/20 (Σ vᵢvᵢᵀ + s sᵀ), s = Σ vᵢ: an independent closed form (Tonon 2004).
+  const std::vector<Eigen::Vector3d> v = {{0, 0, 0}, {1, 0, 0}, {0, 2, 0}, {0, 0, 3}};
+  const double volume = 1.0, density = 3.0;  // |det[v1 v2 v3]|/6 = 6/6
+  Eigen::Vector3d s = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+  for (const auto& p : v) s += p, sum += p * p.transpose();
+  const Eigen::Matrix3d C = density * volume / 20.0 * (sum + s * s.transpose());
+  const Eigen::Matrix3d I_origin = C.trace() * Eigen::Matrix3d::Identity() - C;
+  const double mass = density * volume;
+  const Eigen::Vector3d c = s / 4.0;
+  const Eigen::Matrix3d expected = I_origin - mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+  MeshMassOptions options;
+  options.density = density;
+  const MeshMassProperties p = meshMassProperties(loadMesh(kMeshes + "/tetrahedron.obj"), options);
+  EXPECT_NEAR(p.mass, mass, 1e-14);
+  EXPECT_LT((p.p_MBcm - c).norm(), 1e-15);
+  EXPECT_LT(relativeError(p.I_Bcm_M, expected), 1e-12);
+}
+
+TEST(MeshMassProperties, MovingTheMeshMovesTheCentreAndTurnsTheTensor) {
+  const TriangleMesh bracket = primitives::lBracket(0.1, 0.02, 0.005);
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translate(Eigen::Vector3d(1.0, -2.0, 0.5));
+  X.rotate(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
+  const MeshMassProperties here = exactOf(bracket), there = exactOf(transformed(bracket, 1.0, X));
+  EXPECT_LT((there.p_MBcm - X * here.p_MBcm).norm(), 1e-12);
+  EXPECT_LT(relativeError(there.I_Bcm_M, X.linear() * here.I_Bcm_M * X.linear().transpose()), 1e-12);
+  // Scaling by s: I ∝ m s² at equal mass.
+  EXPECT_LT(relativeError(exactOf(transformed(bracket, 3.0)).I_Bcm_M, 9.0 * here.I_Bcm_M), 1e-12);
+}
+
+TEST(MeshMassProperties, LBracketEqualsTwoBoxesByTheParallelAxisTheorem) {
+  const double leg = 0.1, width = 0.02, thickness = 0.005, density = 2700.0;
+  // Box A: [0, leg] × [0, width]; box B: [0, width] × [width, leg].
+  const auto part = [&](const Eigen::Vector3d& size, const Eigen::Vector3d& centre, double& mass) {
+    mass = density * size.prod();
+    return std::make_pair(MassProperties::box(mass, size).inertia(), centre);
+  };
+  double ma, mb;
+  const auto a = part(Eigen::Vector3d(leg, width, thickness), Eigen::Vector3d(leg / 2, width / 2, 0), ma);
+  const auto b = part(Eigen::Vector3d(width, leg - width, thickness), Eigen::Vector3d(width / 2, (leg + width) / 2, 0), mb);
+  const Eigen::Vector3d c = (ma * a.second + mb * b.second) / (ma + mb);
+  const auto shifted = [&](const Eigen::Matrix3d& I, double m, const Eigen::Vector3d& p) {
+    const Eigen::Vector3d d = p - c;
+    return Eigen::Matrix3d(I + m * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose()));
+  };
+  const Eigen::Matrix3d expected = shifted(a.first, ma, a.second) + shifted(b.first, mb, b.second);
+  MeshMassOptions options;
+  options.density = density;
+  const MeshMassProperties p = meshMassProperties(loadMesh(kMeshes + "/l_bracket.obj"), options);
+  EXPECT_NEAR(p.mass, ma + mb, 1e-12 * (ma + mb));
+  EXPECT_LT((p.p_MBcm - c).norm(), 1e-15);
+  EXPECT_LT(relativeError(p.I_Bcm_M, expected), 1e-12);
+  EXPECT_GT(std::abs(p.I_Bcm_M(0, 1)), 1e-3 * p.I_Bcm_M(0, 0));  // a real product of inertia
+}
+
+TEST(MeshMassProperties, IcosphereConvergesToTheSphere) {
+  const Eigen::Matrix3d sphere = MassProperties::sphere(2.0, 0.5).inertia();
+  double previous = 1.0;
+  for (int level = 1; level <= 4; ++level) {
+    const double error = relativeError(exactOf(primitives::icosphere(0.5, level)).I_Bcm_M, sphere);
+    EXPECT_LT(error, previous / 3.0) << level;  // the polyhedron closes in on the sphere (~4× per level)
+    previous = error;
+  }
+  EXPECT_LT(previous, 1e-2);
+}
+
+TEST(MeshMassProperties, CylinderPrismConvergesAsOneOverNSquared) {
+  const Eigen::Matrix3d cylinder = MassProperties::cylinder(2.0, 0.1, 0.4).inertia();
+  const double e16 = relativeError(exactOf(primitives::cylinder(0.1, 0.4, 16)).I_Bcm_M, cylinder);
+  const double e64 = relativeError(exactOf(primitives::cylinder(0.1, 0.4, 64)).I_Bcm_M, cylinder);
+  EXPECT_NEAR(e16 / e64, 16.0, 1.0);  // (64/16)²
+  EXPECT_LT(e64, 1e-3);
+}
+
+TEST(MeshMassProperties, SamplingConvergesAsOneOverSqrtN) {
+  const TriangleMesh bracket = loadMesh(kMeshes + "/l_bracket.obj");
+  const Eigen::Matrix3d exact = exactOf(bracket).I_Bcm_M;
+  MeshMassOptions options;
+  options.method = InertiaMethod::kSampling;
+  options.mass = 2.0;
+  options.seed = 7;
+  double previous_se = 0.0;
+  for (std::uint64_t n : {2000u, 20000u, 200000u}) {
+    options.samples = n;
+    const MeshMassProperties p = meshMassProperties(bracket, options);
+    const double error = (p.I_Bcm_M - exact).norm();
+    EXPECT_LT(error, 4.0 * p.inertia_standard_error) << n;  // the reported standard error is honest
+    if (previous_se > 0.0) {
+      EXPECT_NEAR(previous_se / p.inertia_standard_error, std::sqrt(10.0), 0.6) << n;
+    }
+    previous_se = p.inertia_standard_error;
+  }
+  // Same seed, same result.
+  options.samples = 2000;
+  EXPECT_EQ(meshMassProperties(bracket, options).I_Bcm_M, meshMassProperties(bracket, options).I_Bcm_M);
+}
+
+TEST(MeshMassProperties, BoundingBoxOfASphereIsFiveThirdsOfIt) {
+  // A sphere of radius r in its bounding cube of side 2r: (M/12)(8r²) / ((2/5) M r²) = 5/3.
+  MeshMassOptions options;
+  options.method = InertiaMethod::kBoundingBox;
+  options.mass = 2.0;
+  const MeshMassProperties box = meshMassProperties(primitives::icosphere(0.5, 4), options);
+  const Eigen::Matrix3d sphere = MassProperties::sphere(2.0, 0.5).inertia();
+  EXPECT_NEAR(box.I_Bcm_M(0, 0) / sphere(0, 0), 5.0 / 3.0, 0.02);
+  EXPECT_NEAR(box.I_Bcm_M(2, 2) / sphere(2, 2), 5.0 / 3.0, 0.02);
+  // The oriented box of a long, turned box is the box itself; the axis-aligned one overestimates.
+  Eigen::Isometry3d turn = Eigen::Isometry3d(Eigen::AngleAxisd(0.6, Eigen::Vector3d::UnitZ()));
+  const TriangleMesh turned = transformed(primitives::box(Eigen::Vector3d(0.4, 0.1, 0.05)), 1.0, turn);
+  options.method = InertiaMethod::kOrientedBoundingBox;
+  const Eigen::Matrix3d exact = exactOf(turned).I_Bcm_M;
+  EXPECT_LT(relativeError(meshMassProperties(turned, options).I_Bcm_M, exact), 1e-9);
+  options.method = InertiaMethod::kBoundingBox;
+  EXPECT_GT(relativeError(meshMassProperties(turned, options).I_Bcm_M, exact), 0.1);
+}
+
+TEST(MeshMassProperties, PrincipalAxesGiveADiagonalTensorAndTheFrameToFindIt) {
+  const MeshMassProperties p = exactOf(loadMesh(kMeshes + "/l_bracket.obj"));
+  const MeshBody body = meshBody(p, true);
+  const Eigen::Matrix3d& I_B = body.mass.inertia();
+  EXPECT_LT(std::abs(I_B(0, 1)) + std::abs(I_B(0, 2)) + std::abs(I_B(1, 2)), 1e-12 * I_B.norm());
+  const Eigen::Matrix3d R_MB = body.X_MB.linear();
+  EXPECT_NEAR(R_MB.determinant(), 1.0, 1e-12);
+  EXPECT_LT(relativeError(R_MB * I_B * R_MB.transpose(), p.I_Bcm_M), 1e-12);
+  EXPECT_EQ(body.X_MB.translation(), p.p_MBcm);
+  // Without principal axes: the mesh's own axes, the same tensor.
+  EXPECT_LT(relativeError(meshBody(p, false).mass.inertia(), p.I_Bcm_M), 1e-15);
+}
+
+TEST(MeshMassProperties, EveryMethodGivesAPhysicalTensor) {
+  for (InertiaMethod method : {InertiaMethod::kExact, InertiaMethod::kSampling, InertiaMethod::kBoundingBox,
+                               InertiaMethod::kOrientedBoundingBox}) {
+    MeshMassOptions options;
+    options.method = method;
+    options.mass = 1.0;
+    options.samples = 5000;
+    for (const char* name : {"/l_bracket.obj", "/ring.obj", "/sphere.stl"}) {
+      EXPECT_NO_THROW(meshBody(meshMassProperties(loadMesh(kMeshes + name), options), true))
+          << inertiaMethodName(method) << name;
+    }
+  }
+}
+
+TEST(MeshErrors, BrokenMeshesGiveClearErrors) {
+  const auto message = [](const std::string& file) -> std::string {
+    try {
+      exactOf(loadMesh(kMeshes + file));
+    } catch (const MeshError& error) {
+      return error.what();
+    }
+    return "";
+  };
+  EXPECT_NE(message("/open_box.obj").find("mesh is not closed: 3 edges belong to one triangle only"), std::string::npos)
+      << message("/open_box.obj");
+  EXPECT_NE(message("/one_flipped_box.obj").find("not consistently oriented"), std::string::npos)
+      << message("/one_flipped_box.obj");
+  EXPECT_NE(message("/broken.stl").find("too short to be an STL"), std::string::npos) << message("/broken.stl");
+  EXPECT_NE(message("/no_such_file.stl").find("cannot open mesh file"), std::string::npos);
+  TriangleMesh flat = primitives::box(Eigen::Vector3d(1, 1, 1));
+  for (auto& p : flat.vertices) p.z() = 0.0;  // closed, but encloses nothing
+  try {
+    exactOf(flat);
+    FAIL() << "expected MeshError";
+  } catch (const MeshError& error) {
+    EXPECT_NE(std::string(error.what()).find("encloses no volume"), std::string::npos) << error.what();
+  }
+}
+
+TEST(MeshErrors, AnInsideOutMeshIsFlippedWithAWarning) {
+  const MeshMassProperties p = exactOf(loadMesh(kMeshes + "/inside_out_box.obj"));
+  ASSERT_EQ(p.warnings.size(), 1u);
+  EXPECT_NE(p.warnings[0].find("inside out"), std::string::npos);
+  EXPECT_GT(p.volume, 0.0);
+  EXPECT_LT(relativeError(p.I_Bcm_M, MassProperties::box(2.0, Eigen::Vector3d(0.4, 0.2, 0.1)).inertia()), 1e-12);
+}
