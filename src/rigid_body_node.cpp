@@ -20,6 +20,13 @@ int main(int argc, char** argv) {
     ROS_WARN("unknown parameter ~%s is ignored (a typo?)", name.c_str());
   }
   rigid_body_ros::SimulatorNode node(nh, private_nh, config);
+  if (config.lockstep) {
+    // The node owns simulated time: other nodes follow /clock (as with Gazebo, /use_sim_time is set if unset).
+    if (!ros::param::has("/use_sim_time")) ros::param::set("/use_sim_time", true);
+    node.start(ros::Time(0));
+    node.runLockstep();
+    return 0;
+  }
   ros::Time::waitForValid();  // under /use_sim_time, until the first /clock message
   node.start(ros::Time::now());
   ros::spin();

@@ -53,22 +53,42 @@ bool noInput(const AppliedWrench& input) {
 
 }  // namespace
 
-AdvanceResult Simulation::advanceTo(double elapsed) {
+std::int64_t Simulation::clockStepsAt(double elapsed) const {
+  return anchor_steps_ + wholeStepsIn(elapsed - anchor_elapsed_, dt_);
+}
+
+AdvanceResult Simulation::advanceTo(double elapsed) { return advanceToStep(clockStepsAt(elapsed)); }
+
+AdvanceResult Simulation::advanceToStep(std::int64_t target) {
   AdvanceResult result;
-  const std::int64_t due = anchor_steps_ + wholeStepsIn(elapsed - anchor_elapsed_, dt_) - clock_steps_;
+  const std::int64_t due = target - clock_steps_;
   if (due <= 0) return result;
+  clock_steps_ += due;
+  if (divergence_ != Divergence::kNone || paused_) return result;  // the clock runs, the state holds
   const std::int64_t steps = std::min(due, max_substeps_);
   result.dropped = due - steps;
   dropped_steps_ += result.dropped;
-  clock_steps_ += due;
-  if (divergence_ != Divergence::kNone) return result;  // frozen at the last good state until reset()
+  const AdvanceResult integrated = integrate(steps);
+  result.steps = integrated.steps;
+  result.status = integrated.status;
+  result.diverged = integrated.diverged;
+  return result;
+}
 
+AdvanceResult Simulation::stepNow(std::int64_t steps) {
+  if (divergence_ != Divergence::kNone || steps <= 0) return AdvanceResult();
+  return integrate(steps);
+}
+
+AdvanceResult Simulation::integrate(std::int64_t steps) {
+  AdvanceResult result;
   const State before = state_;
   for (std::int64_t k = 0; k < steps; ++k) {
     result.status = integrator_.step(model_, input_, dt_, state_);
     if (result.status != StepStatus::kOk) break;
     ++result.steps;
   }
+  integrated_steps_ += result.steps;
   if (result.status == StepStatus::kNonFinite || result.status == StepStatus::kNotConverged) {
     divergence_ = result.status == StepStatus::kNonFinite ? Divergence::kNonFiniteState : Divergence::kStepFailure;
   } else if (std::isfinite(max_energy_growth_) && noInput(input_)) {
@@ -87,6 +107,12 @@ AdvanceResult Simulation::advanceTo(double elapsed) {
     result.diverged = true;
   }
   return result;
+}
+
+void Simulation::rewindClock() {
+  clock_steps_ = 0;
+  anchor_steps_ = 0;
+  anchor_elapsed_ = 0.0;
 }
 
 void Simulation::reanchor(double elapsed) {

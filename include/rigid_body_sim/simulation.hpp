@@ -51,9 +51,25 @@ class Simulation {
   /// After a divergence the clock still advances but the state stays the last good one until reset().
   AdvanceResult advanceTo(double elapsed);
 
+  /// The clock step that `elapsed` [s] since the start falls on (after the last reanchor).
+  std::int64_t clockStepsAt(double elapsed) const;
+  /// advanceTo expressed in clock steps: integrates up to clock step `target` (nothing if already there).
+  AdvanceResult advanceToStep(std::int64_t target);
+
   /// Re-anchors the clock: the next advanceTo counts grid points from `elapsed` on (after ROS time jumped
   /// backwards). The state is kept; clockSteps() keeps counting up from where it is.
   void reanchor(double elapsed);
+
+  /// While paused, advanceTo moves the clock but not the state (as after a divergence).
+  void setPaused(bool paused) { paused_ = paused; }
+  bool paused() const { return paused_; }
+
+  /// Integrates `steps` steps now, paused or not, without moving the clock (a user's "step" request when
+  /// the clock belongs to someone else). Stops at a failure, which latches the divergence as advanceTo does.
+  AdvanceResult stepNow(std::int64_t steps);
+
+  /// Sets the clock back to 0 (a deliberate rewind: reset_time in lockstep); the state is not touched.
+  void rewindClock();
 
   /// Replaces the input from the next step on.
   void setInput(const AppliedWrench& input) { input_ = input; }
@@ -75,10 +91,15 @@ class Simulation {
   /// Grid points passed since the start, integrated or dropped: the state belongs to time clockSteps()·dt.
   std::int64_t clockSteps() const { return clock_steps_; }
   std::int64_t droppedSteps() const { return dropped_steps_; }
+  /// Steps integrated since construction (not the clock: paused, dropped and diverged steps do not count).
+  std::int64_t integratedSteps() const { return integrated_steps_; }
   /// The state and energy at the last reset (or construction), for drift diagnostics.
   const State& initialState() const { return initial_; }
 
  private:
+  // Integrates `steps` steps from the current state with the divergence checks; the clock is the caller's.
+  AdvanceResult integrate(std::int64_t steps);
+
   Model model_;
   State initial_;
   State state_;
@@ -91,6 +112,8 @@ class Simulation {
   std::int64_t anchor_steps_ = 0;  // grid points counted before the last reanchor
   double anchor_elapsed_ = 0.0;    // elapsed time of the last reanchor [s]
   double max_energy_growth_ = std::numeric_limits<double>::infinity();
+  bool paused_ = false;
+  std::int64_t integrated_steps_ = 0;
   Divergence divergence_ = Divergence::kNone;
 };
 

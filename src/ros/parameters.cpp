@@ -29,7 +29,10 @@ const std::set<std::string> kTopLevelNames = {
     "rate",    "dt",      "integrator", "world_frame",    "body_frame",      "mass",           "shape",
     "size",    "inertia", "initial",    "gravity",        "linear_damping",  "angular_damping", "wrench_timeout",
     "max_substeps", "publish_tf", "abs_tolerance", "rel_tolerance", "max_force", "max_torque", "max_energy_growth",
-    "mesh", "scale", "density", "inertia_method", "samples", "principal_axes", "mesh_frame"};
+    "mesh", "scale", "density", "inertia_method", "samples", "principal_axes", "mesh_frame",
+    "lockstep", "real_time_factor", "start_paused", "noise"};
+const std::set<std::string> kNoiseNames = {"position_stddev", "orientation_stddev", "linear_velocity_stddev",
+                                           "angular_velocity_stddev", "seed", "delay"};
 const std::set<std::string> kInitialNames = {"position", "orientation", "linear_velocity", "angular_velocity"};
 
 std::string render(const XmlRpcValue& value) {
@@ -352,7 +355,26 @@ NodeConfig parseConfig(const XmlRpcValue& params) {
     if (config.shape != "mesh") fail("mesh_frame", *find(params, "mesh_frame"), "is only for shape mesh");
     config.mesh_frame = readFrame(params, "mesh_frame", "");
   }
+  config.lockstep = readBool(params, "lockstep", false);
+  config.real_time_factor = readNumber(params, "real_time_factor", 1.0, [](double f) { return f >= 0.0; },
+                                       "must be a finite number >= 0 (0: as fast as possible)");
+  config.start_paused = readBool(params, "start_paused", false);
+  const auto readStddev = [&](const std::string& name, const std::string& unit) {
+    const Eigen::Vector3d v = readVector3(params, "noise/" + name, unit);
+    if ((v.array() < 0.0).any()) fail("noise/" + name, *find(params, "noise/" + name), "must be 3 numbers >= 0 " + unit);
+    return v;
+  };
+  config.noise.position_stddev = readStddev("position_stddev", "[m]");
+  config.noise.orientation_stddev = readStddev("orientation_stddev", "[rad]");
+  config.noise.linear_velocity_stddev = readStddev("linear_velocity_stddev", "[m/s]");
+  config.noise.angular_velocity_stddev = readStddev("angular_velocity_stddev", "[rad/s]");
+  config.noise.delay = readNumber(params, "noise/delay", 0.0, [](double d) { return d >= 0.0; }, "must be a finite number >= 0 [s]");
+  if (const XmlRpcValue* seed = find(params, "noise/seed")) {
+    if (seed->getType() != XmlRpcValue::TypeInt) fail("noise/seed", *seed, "must be an integer");
+    config.noise.seed = static_cast<int>(*const_cast<XmlRpcValue*>(seed));
+  }
   collectUnknown(params, "", kTopLevelNames, config.unknown_parameters);
+  if (const XmlRpcValue* noise = find(params, "noise")) collectUnknown(*noise, "noise/", kNoiseNames, config.unknown_parameters);
   if (const XmlRpcValue* initial = find(params, "initial")) {
     collectUnknown(*initial, "initial/", kInitialNames, config.unknown_parameters);
   }

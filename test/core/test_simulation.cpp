@@ -85,3 +85,26 @@ TEST(Simulation, RefusesInvalidConstruction) {
   nan_state.p_WB.x() = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(Simulation(model, nan_state, IntegratorType::kRk4, 0.001, 10), std::invalid_argument);
 }
+
+TEST(Simulation, PausedTheClockRunsAndTheStateHoldsAndStepNowStillSteps) {
+  Simulation sim = makeSimulation();
+  AppliedWrench push;
+  push.world.force = Eigen::Vector3d(1.0, 0.0, 0.0);
+  sim.setInput(push);
+  sim.advanceTo(0.1);
+  const State before = sim.state();
+  sim.setPaused(true);
+  EXPECT_EQ(sim.advanceTo(5.0).steps, 0);  // 4900 steps due, none integrated and none "dropped"
+  EXPECT_EQ(sim.droppedSteps(), 0);
+  EXPECT_EQ(sim.clockSteps(), 5000);
+  EXPECT_EQ(sim.state().P_W, before.P_W);
+  EXPECT_EQ(sim.stepNow(37).steps, 37);  // exactly N steps, the clock untouched
+  EXPECT_EQ(sim.clockSteps(), 5000);
+  EXPECT_EQ(sim.integratedSteps(), 137);
+  EXPECT_NEAR(sim.state().P_W.x() - before.P_W.x(), 37 * 0.001, 1e-12);
+  sim.setPaused(false);
+  EXPECT_EQ(sim.advanceTo(5.01).steps, 10);
+  sim.rewindClock();
+  EXPECT_EQ(sim.clockSteps(), 0);
+  EXPECT_EQ(sim.advanceTo(0.002).steps, 2);
+}

@@ -38,6 +38,10 @@ class Recorder {
   Recorder(ros::NodeHandle& nh, const std::string& topic)
       : subscriber_(nh.subscribe(topic, 1000, &Recorder::onMessage, this)) {}
   void onMessage(const Message& message) { messages.push_back(message); }
+  /// Waits until a publisher is connected (before starting something fast).
+  bool waitForConnection() {
+    return waitUntil([&] { return subscriber_.getNumPublishers() > 0; });
+  }
   bool waitForCount(size_t count) {
     return waitUntil([&] { return messages.size() >= count; });
   }

@@ -245,3 +245,32 @@ TEST(Parameters, MeshProblemsNameTheParameter) {
   // An inside-out mesh is repaired, with a warning for the log.
   EXPECT_EQ(parseConfig(meshParams("/inside_out_box.obj")).mesh_warnings.size(), 1u);
 }
+
+TEST(Parameters, LockstepAndNoise) {
+  XmlRpcValue params;
+  params["lockstep"] = true;
+  params["real_time_factor"] = 0;
+  params["start_paused"] = true;
+  params["noise"]["position_stddev"] = list({0.01, 0.02, 0.03});
+  params["noise"]["delay"] = 0.05;
+  params["noise"]["seed"] = 42;
+  const NodeConfig config = parseConfig(params);
+  EXPECT_TRUE(config.lockstep);
+  EXPECT_EQ(config.real_time_factor, 0.0);
+  EXPECT_TRUE(config.start_paused);
+  EXPECT_TRUE(config.noise.enabled());
+  EXPECT_EQ(config.noise.position_stddev, Eigen::Vector3d(0.01, 0.02, 0.03));
+  EXPECT_EQ(config.noise.delay, 0.05);
+  EXPECT_EQ(config.noise.seed, 42);
+  EXPECT_FALSE(parseConfig(XmlRpcValue()).noise.enabled());  // off by default: no odom_noisy at all
+
+  XmlRpcValue bad;
+  bad["real_time_factor"] = -1.0;
+  EXPECT_NE(errorOf(bad).find("parameter ~real_time_factor = -1: must be a finite number >= 0"), std::string::npos);
+  XmlRpcValue negative;
+  negative["noise"]["orientation_stddev"] = list({0.0, -0.1, 0.0});
+  EXPECT_NE(errorOf(negative).find("parameter ~noise/orientation_stddev"), std::string::npos) << errorOf(negative);
+  XmlRpcValue typo;
+  typo["noise"]["postion_stddev"] = list({0.0, 0.0, 0.0});
+  EXPECT_EQ(parseConfig(typo).unknown_parameters, std::vector<std::string>{"noise/postion_stddev"});
+}

@@ -27,6 +27,20 @@ class ParameterError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Optional Gaussian noise on a copy of the odometry (odom_noisy); all zero: no noisy copy at all.
+struct NoiseConfig {
+  Eigen::Vector3d position_stddev = Eigen::Vector3d::Zero();          ///< [m], world axes
+  Eigen::Vector3d orientation_stddev = Eigen::Vector3d::Zero();       ///< [rad], small rotation in body axes
+  Eigen::Vector3d linear_velocity_stddev = Eigen::Vector3d::Zero();   ///< [m/s], body axes
+  Eigen::Vector3d angular_velocity_stddev = Eigen::Vector3d::Zero();  ///< [rad/s], body axes
+  int seed = 1;                                                        ///< the generator's seed (reproducible)
+  double delay = 0.0;                                                  ///< publication delay [s]
+  bool enabled() const {
+    return !(position_stddev.isZero(0.0) && orientation_stddev.isZero(0.0) && linear_velocity_stddev.isZero(0.0) &&
+             angular_velocity_stddev.isZero(0.0));
+  }
+};
+
 /// Everything the node needs, with the defaults of the README's parameter table.
 struct NodeConfig {
   double rate = 100.0;  ///< timer and publish rate [Hz]
@@ -46,6 +60,10 @@ struct NodeConfig {
   double max_energy_growth = 2.0;    ///< divergence guard: energy factor per tick with no wrench commanded
   std::int64_t max_substeps = 1000;  ///< steps one tick may integrate; the rest is dropped and counted
   bool publish_tf = true;            ///< broadcast world_frame → body_frame
+  bool lockstep = false;          ///< the node owns simulated time and publishes /clock
+  double real_time_factor = 1.0;  ///< lockstep pace: simulated seconds per wall second; 0 = as fast as possible
+  bool start_paused = false;      ///< start paused (pause/unpause/step services)
+  NoiseConfig noise;
   // shape: mesh
   std::string mesh_path;             ///< the resolved file of ~mesh
   std::string mesh_frame;            ///< if set, a static tf body_frame → mesh_frame is published

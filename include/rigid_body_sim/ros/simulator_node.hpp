@@ -8,16 +8,25 @@
 #include <geometry_msgs/WrenchStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
+#include <geometry_msgs/Wrench.h>
 #include <std_srvs/Empty.h>
+#include <std_srvs/Trigger.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
 
 #include <cstdint>
+#include <deque>
 #include <memory>
+#include <random>
+#include <vector>
 
+#include "rigid_body_sim/ApplyWrench.h"
+#include "rigid_body_sim/GetState.h"
 #include "rigid_body_sim/RigidBodyState.h"
+#include "rigid_body_sim/SetState.h"
+#include "rigid_body_sim/Step.h"
 #include "rigid_body_sim/ros/parameters.hpp"
 #include "rigid_body_sim/simulation.hpp"
 
@@ -49,8 +58,13 @@ class SimulatorNode {
   /// start().
   SimulatorNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const NodeConfig& config);
 
-  /// Anchors simulated time 0 at `start_time` and starts the timer at config.rate.
+  /// Anchors simulated time 0 at `start_time` and starts the timer at config.rate (not in lockstep).
   void start(const ros::Time& start_time);
+
+  /// Lockstep: the node owns simulated time. Steps the scene, publishes /clock and the outputs at `rate`,
+  /// paces itself by real_time_factor (0: as fast as possible), serves callbacks between steps; returns at
+  /// shutdown. Called instead of ros::spin().
+  void runLockstep();
 
   /// One tick: integrates the whole steps due up to `now` and publishes the state if the clock reached a
   /// new grid point. Published stamps advance by whole steps of dt from the anchor, so they strictly
@@ -58,14 +72,47 @@ class SimulatorNode {
   void update(const ros::Time& now);
 
   void onWrench(const geometry_msgs::WrenchStamped::ConstPtr& message);
+  /// wrench_unstamped: world axes about the centre of mass (a drop-in for gazebo_ros_force users).
+  void onWrenchUnstamped(const geometry_msgs::Wrench::ConstPtr& message);
   bool onReset(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
+  bool onResetTime(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
+  bool onPause(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
+  bool onUnpause(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
+  bool onStep(rigid_body_sim::Step::Request& request, rigid_body_sim::Step::Response& response);
+  bool onApplyWrench(rigid_body_sim::ApplyWrench::Request& request, rigid_body_sim::ApplyWrench::Response& response);
+  bool onClearWrenches(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
+  bool onSetState(rigid_body_sim::SetState::Request& request, rigid_body_sim::SetState::Response& response);
+  bool onGetState(rigid_body_sim::GetState::Request& request, rigid_body_sim::GetState::Response& response);
 
   const rigid_body::Simulation& simulation() const { return simulation_; }
   const Counters& counters() const { return counters_; }
 
  private:
+  /// A service wrench acting over clock steps [start, end) (end < 0: until cleared).
+  struct TimedWrench {
+    rigid_body::AppliedWrench wrench;
+    std::int64_t start;
+    std::int64_t end;
+  };
+
+  /// The node's notion of now: the lockstep clock, or ROS time.
+  ros::Time now() const;
   /// Integrates up to `now` (used before an input changes, so an input acts from the step at its arrival).
   void advanceTo(const ros::Time& now);
+  /// Integrates up to clock step `target`, switching the input at every start and end of a service wrench.
+  void advanceToStep(std::int64_t target);
+  /// The topic wrench plus every service wrench active at clock step k.
+  rigid_body::AppliedWrench inputAtStep(std::int64_t k) const;
+  /// Turns a validated message wrench (in `frame`) into world- or body-fixed parts, about the centre of mass;
+  /// `point`, if given, is where the force acts, in `frame`. False if the frame cannot be resolved.
+  bool toAppliedWrench(const geometry_msgs::Wrench& wrench, const std::string& frame, const ros::Time& stamp,
+                       const Eigen::Vector3d* point, rigid_body::AppliedWrench& out);
+  bool acceptWrench(const geometry_msgs::Wrench& wrench);
+  void setTopicWrench(const rigid_body::AppliedWrench& input, const ros::Time& now);
+  /// Back to the initial state with every wrench cleared (reset and reset_time).
+  void resetBody();
+  void publishClock();
+  void publishNoisy(const ros::Time& stamp);
   /// Applies wrench_timeout: the wrench acts until last arrival + timeout, then drops to zero.
   void expireWrench(const ros::Time& now);
   void publish();
@@ -80,7 +127,12 @@ class SimulatorNode {
   ros::Publisher odom_publisher_;
   ros::Publisher state_publisher_;
   ros::Subscriber wrench_subscriber_;
+  ros::Subscriber wrench_unstamped_subscriber_;
+  ros::Publisher applied_wrench_publisher_;
+  ros::Publisher clock_publisher_;       ///< lockstep only
+  ros::Publisher odom_noisy_publisher_;  ///< only with noise
   ros::ServiceServer reset_service_;
+  std::vector<ros::ServiceServer> control_services_;
   ros::Timer timer_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   tf2_ros::Buffer tf_buffer_;
@@ -103,6 +155,11 @@ class SimulatorNode {
   rigid_body::Divergence reported_divergence_ = rigid_body::Divergence::kNone;
   double max_norm_error_ = 0.0;              ///< max ||q| − 1| since reset
   std::uint64_t reported_problems_ = 0;      ///< rejections, drops and overruns at the last diagnostics
+  rigid_body::AppliedWrench topic_input_;    ///< the latest wrench / wrench_unstamped (latest wins)
+  std::vector<TimedWrench> timed_wrenches_;  ///< apply_wrench requests (summed)
+  std::mt19937_64 noise_generator_;
+  std::deque<nav_msgs::Odometry> delayed_noisy_;  ///< noisy odometry waiting out noise/delay
+  geometry_msgs::WrenchStamped applied_wrench_message_;
 
   // Messages whose constant fields (frame ids, covariances) are filled once.
   nav_msgs::Odometry odom_message_;

@@ -1,0 +1,212 @@
+// Simulation control and realism against a lockstep node: /clock faster than real time, pause, step,
+// reset and reset_time, apply_wrench with a duration and at a point, set_state/get_state, sensor noise,
+// and bit-for-bit reproducibility of a stepped run.
+#include <gtest/gtest.h>
+#include <rosgraph_msgs/Clock.h>
+#include <std_srvs/Empty.h>
+#include <std_srvs/Trigger.h>
+
+#include "rigid_body_sim/ApplyWrench.h"
+#include "rigid_body_sim/GetState.h"
+#include "rigid_body_sim/SetState.h"
+#include "rigid_body_sim/Step.h"
+#include "test_helpers.hpp"
+
+using namespace test_helpers;
+
+namespace {
+
+constexpr double kDt = 0.001, kMass = 2.0;
+
+class Control : public ::testing::Test {
+ protected:
+  template <typename Service>
+  Service call(const std::string& name, Service service = Service()) {
+    ros::ServiceClient client = nh_.serviceClient<Service>("lock/" + name);
+    EXPECT_TRUE(client.waitForExistence(ros::Duration(kWaitLimit))) << name;
+    EXPECT_TRUE(client.call(service)) << name;
+    return service;
+  }
+  void pause() { call<std_srvs::Empty>("pause"); }
+  void unpause() { call<std_srvs::Empty>("unpause"); }
+  rigid_body_sim::Step::Response step(int n) {
+    rigid_body_sim::Step s;
+    s.request.steps = n;
+    return call("step", s).response;
+  }
+  rigid_body_sim::GetState::Response state() { return call<rigid_body_sim::GetState>("get_state").response; }
+  void resetTime() { EXPECT_TRUE(call<std_srvs::Trigger>("reset_time").response.success); }
+  rigid_body_sim::ApplyWrench::Response apply(const std::string& frame, const Eigen::Vector3d& force, double duration,
+                                              const Eigen::Vector3d* point = nullptr) {
+    rigid_body_sim::ApplyWrench a;
+    a.request.frame_id = frame;
+    a.request.wrench.force.x = force.x();
+    a.request.wrench.force.y = force.y();
+    a.request.wrench.force.z = force.z();
+    a.request.duration = ros::Duration(duration);
+    if (point) {
+      a.request.use_point = true;
+      a.request.point = tf2::toMsg(*point);
+    }
+    return call("apply_wrench", a).response;
+  }
+  static Eigen::Vector3d vec(const geometry_msgs::Vector3& v) { return Eigen::Vector3d(v.x, v.y, v.z); }
+
+  ros::NodeHandle nh_;
+};
+
+}  // namespace
+
+TEST_F(Control, PausedAtStartThenStepAdvancesExactlyNSteps) {
+  const auto before = state();
+  EXPECT_TRUE(before.paused);
+  spinFor(0.3);
+  EXPECT_EQ(state().total_steps, before.total_steps);  // paused: nothing moves, the clock neither
+  const auto stepped = step(37);
+  ASSERT_TRUE(stepped.success) << stepped.message;
+  EXPECT_EQ(stepped.total_steps, before.total_steps + 37);
+  EXPECT_NEAR(stepped.sim_time - before.stamp.toSec(), 37 * kDt, 1e-9);
+  EXPECT_NEAR(state().stamp.toSec(), stepped.sim_time, 1e-12);
+}
+
+TEST_F(Control, ApplyWrenchWithADurationChangesMomentumByForceTimesDuration) {
+  resetTime();
+  pause();
+  const Eigen::Vector3d force(2.0, 0.0, -1.0);
+  ASSERT_TRUE(apply("world", force, 0.25).success);
+  ASSERT_TRUE(step(1000).success);  // 1 s: the wrench acted for 0.25 s of it
+  const Eigen::Vector3d dv = vec(state().twist_world.linear);
+  const Eigen::Vector3d expected = force * 0.25 / kMass;
+  EXPECT_LT((dv - expected).norm(), force.norm() * kDt / kMass + 1e-12) << dv.transpose();
+  // A point force: τ = (p − x) × F about the centre of mass, here at body point (0, 0.1, 0) with F along x.
+  resetTime();
+  pause();
+  const Eigen::Vector3d point(0.0, 0.1, 0.0);
+  ASSERT_TRUE(apply("lock_link", Eigen::Vector3d(1.0, 0.0, 0.0), 0.1, &point).success);
+  ASSERT_TRUE(step(100).success);
+  const double I0 = 0.4 * kMass * 0.01;  // sphere r = 0.1
+  const Eigen::Vector3d w = vec(state().twist_world.angular);
+  EXPECT_NEAR(w.z(), -0.1 * 1.0 * 0.1 / I0, 1e-9);  // (0, 0.1, 0) × (1, 0, 0) = (0, 0, −0.1) N m for 0.1 s
+  EXPECT_NEAR(w.x(), 0.0, 1e-12);
+  call<std_srvs::Empty>("clear_wrenches");
+}
+
+TEST_F(Control, SetStateAndGetStateRoundTripAndBadStatesAreRefused) {
+  pause();
+  rigid_body_sim::SetState set;
+  set.request.pose.position.x = 1.5;
+  set.request.pose.orientation = tf2::toMsg(Eigen::Quaterniond(Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ())));
+  set.request.twist.linear.x = 1.0;  // body axes
+  set.request.twist.angular.z = 0.3;
+  set.request.twist_frame = "body";
+  ASSERT_TRUE(call("set_state", set).response.success);
+  const auto got = state();
+  EXPECT_NEAR(got.pose.position.x, 1.5, 1e-15);
+  EXPECT_NEAR(got.pose.orientation.z, std::sin(0.25), 1e-15);
+  EXPECT_NEAR(got.twist_body.linear.x, 1.0, 1e-14);
+  EXPECT_NEAR(got.twist_world.linear.y, std::sin(0.5), 1e-14);  // body x turned by 0.5 rad
+  EXPECT_NEAR(got.twist_body.angular.z, 0.3, 1e-14);
+  set.request.pose.orientation.w *= 1.001;  // |q| off by ~1e-3
+  const auto refused = call("set_state", set).response;
+  EXPECT_FALSE(refused.success);
+  EXPECT_NE(refused.message.find("unit quaternion"), std::string::npos) << refused.message;
+  set.request.pose.orientation.w = std::nan("");
+  EXPECT_FALSE(call("set_state", set).response.success);
+  EXPECT_NEAR(state().pose.position.x, 1.5, 1e-15);  // the refused requests changed nothing
+}
+
+TEST_F(Control, LockstepRunsFasterThanRealTimeAndResetKeepsStampsIncreasing) {
+  resetTime();
+  Recorder<nav_msgs::Odometry> odom(nh_, "lock/odom");
+  Recorder<rosgraph_msgs::Clock> clock(nh_, "/clock");
+  ASSERT_TRUE(odom.waitForConnection() && clock.waitForConnection());
+  unpause();
+  const ros::WallTime start = ros::WallTime::now();
+  ASSERT_TRUE(waitUntil([&] { return !clock.messages.empty() && clock.messages.back().clock.toSec() >= 5.0; }, 30.0));
+  const double wall = (ros::WallTime::now() - start).toSec();
+  EXPECT_LT(wall, 5.0 / 5.0) << "5 s of sim time took " << wall << " s";  // at least 5× real time
+  // At full speed a subscriber may miss messages (documented); those it gets are in sim time, in order.
+  ASSERT_GT(odom.messages.size(), 10u);
+  for (size_t i = 1; i < odom.messages.size(); ++i) {
+    ASSERT_GT(odom.messages[i].header.stamp, odom.messages[i - 1].header.stamp);
+  }
+  // Sim time: seconds since the lockstep start on the 10 ms publish grid, not wall-clock epoch seconds.
+  for (const auto& message : odom.messages) {
+    const double stamp = message.header.stamp.toSec();
+    ASSERT_LT(stamp, 1000.0);
+    ASSERT_NEAR(std::remainder(stamp, 0.01), 0.0, 1e-9) << stamp;
+  }
+  // reset: state back, time keeps going.
+  const ros::Time before = odom.messages.back().header.stamp;
+  call<std_srvs::Empty>("reset");
+  const size_t count = odom.messages.size();
+  ASSERT_TRUE(odom.waitForCount(count + 5));
+  EXPECT_GT(odom.messages.back().header.stamp, before);
+  pause();
+}
+
+TEST_F(Control, NoisyOdometryHasTheConfiguredStatisticsAndCovariances) {
+  resetTime();
+  Recorder<nav_msgs::Odometry> truth(nh_, "lock/odom");
+  Recorder<nav_msgs::Odometry> noisy(nh_, "lock/odom_noisy");
+  ASSERT_TRUE(truth.waitForConnection() && noisy.waitForConnection());
+  unpause();
+  ASSERT_TRUE(waitUntil([&] { return noisy.messages.size() >= 1500 && truth.messages.size() >= 1500; }, 30.0));
+  pause();
+  std::map<double, const nav_msgs::Odometry*> by_stamp;
+  for (const auto& message : truth.messages) by_stamp[message.header.stamp.toSec()] = &message;
+  Eigen::Array3d sum = Eigen::Array3d::Zero(), sum2 = Eigen::Array3d::Zero();
+  int n = 0;
+  for (const auto& message : noisy.messages) {
+    const auto found = by_stamp.find(message.header.stamp.toSec());
+    if (found == by_stamp.end()) continue;
+    const Eigen::Array3d d = (position(message) - position(*found->second)).array();
+    sum += d, sum2 += d * d, ++n;
+  }
+  ASSERT_GT(n, 1000);
+  const Eigen::Array3d stddev = (sum2 / n - (sum / n).square()).sqrt();
+  // Sample standard deviation of n normals: relative standard error 1/√(2n) ≈ 2 %; 4 of them allowed.
+  const Eigen::Array3d configured(0.01, 0.02, 0.03);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(stddev(i) / configured(i), 1.0, 4.0 / std::sqrt(2.0 * n)) << i;
+  const auto& covariance = noisy.messages.back().pose.covariance;
+  EXPECT_DOUBLE_EQ(covariance[0], 1e-4);
+  EXPECT_DOUBLE_EQ(covariance[7], 4e-4);
+  EXPECT_DOUBLE_EQ(covariance[35], 9e-6);
+  EXPECT_DOUBLE_EQ(noisy.messages.back().twist.covariance[0], 0.01);
+  EXPECT_EQ(truth.messages.back().pose.covariance[0], 0.0);  // ground truth stays exact
+}
+
+TEST_F(Control, ASteppedRunIsReproducibleBitForBit) {
+  const auto run = [&] {
+    resetTime();
+    pause();
+    std::vector<rigid_body_sim::GetState::Response> trace;
+    // The same inputs at the same step indices: a push, a torque at a point, a body-frame force.
+    const Eigen::Vector3d point(0.05, 0.0, 0.02);
+    apply("world", Eigen::Vector3d(1.0, 0.5, 0.0), 0.05);
+    step(20);
+    trace.push_back(state());
+    apply("lock_link", Eigen::Vector3d(0.0, 0.3, 0.1), 0.03, &point);
+    step(50);
+    trace.push_back(state());
+    apply("lock_link", Eigen::Vector3d(0.2, 0.0, 0.0), -1.0);
+    step(200);
+    trace.push_back(state());
+    call<std_srvs::Empty>("clear_wrenches");
+    return trace;
+  };
+  const auto first = run(), second = run();
+  ASSERT_EQ(first.size(), second.size());
+  for (size_t i = 0; i < first.size(); ++i) {
+    EXPECT_EQ(first[i].stamp, second[i].stamp);
+    EXPECT_EQ(first[i].pose, second[i].pose) << i;                // == on every field: bit for bit
+    EXPECT_EQ(first[i].twist_world, second[i].twist_world) << i;
+  }
+}
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "control_test");
+  ros::NodeHandle nh;
+  return RUN_ALL_TESTS();
+}
