@@ -1,8 +1,8 @@
 // Cost of one step per integrator (Google Benchmark). Not a test: run by scripts/benchmark.sh.
 //
 // The general body has everything the step can meet: a full (non-diagonal) inertia tensor, spin, gravity,
-// linear and angular damping, and an input with world and body parts. The torque-free body is the
-// asymmetric scene of the tests. Each iteration is one step of h = 1 ms.
+// linear and angular damping, and an input with world and body parts. The isotropic body is the same scene
+// on a sphere; the torque-free body is the asymmetric scene of the tests. Each iteration is one step of 1 ms.
 #include <benchmark/benchmark.h>
 
 #include "rigid_body_sim/integrators.hpp"
@@ -45,6 +45,21 @@ void stepGeneralBody(benchmark::State& bench, IntegratorType type) {
       static_cast<double>(integrator.statistics().rhs_evaluations) / static_cast<double>(integrator.statistics().steps);
 }
 
+// The general body's scene on an isotropic body (a sphere): ω = L/I₀ skips the world-inertia rotation.
+void stepIsotropicBody(benchmark::State& bench, IntegratorType type) {
+  Model model = generalModel();
+  model.mass = MassProperties::sphere(1.5, 0.2);
+  AppliedWrench input;
+  input.world.force = Eigen::Vector3d(0.1, 0.0, 15.0);
+  input.body.torque = Eigen::Vector3d(0.001, 0.0, 0.002);
+  State state = spinningState(model.mass);
+  Integrator integrator(type);
+  for (auto _ : bench) {
+    integrator.step(model, input, 0.001, state);
+    benchmark::DoNotOptimize(state);
+  }
+}
+
 void stepTorqueFreeBody(benchmark::State& bench, IntegratorType type) {
   const Model model{MassProperties::fromInertia(1.0, Eigen::Vector3d(1, 2, 3).asDiagonal().toDenseMatrix()),
                     ForceModel{}};
@@ -60,6 +75,7 @@ void stepTorqueFreeBody(benchmark::State& bench, IntegratorType type) {
 int registerAll() {
   for (IntegratorType type : allIntegrators()) {
     benchmark::RegisterBenchmark(("general/" + integratorName(type)).c_str(), stepGeneralBody, type);
+    benchmark::RegisterBenchmark(("isotropic/" + integratorName(type)).c_str(), stepIsotropicBody, type);
     benchmark::RegisterBenchmark(("torque_free/" + integratorName(type)).c_str(), stepTorqueFreeBody, type);
   }
   return 0;

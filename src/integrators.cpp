@@ -189,7 +189,7 @@ State semiImplicitEulerStep(const Model& model, const AppliedWrench& input, doub
   next.P_W = y.P_W + h * wrench.force;
   next.L_W = y.L_W + h * wrench.torque;
   next.p_WB = y.p_WB + (h * model.mass.inverseMass()) * next.P_W;
-  next.q_WB = quaternionExp(h * (motion.I_inv_W * next.L_W)) * y.q_WB;
+  next.q_WB = quaternionExp(h * applyWorldInverseInertia(model.mass, motion.R_WB, next.L_W)) * y.q_WB;
   next.t = y.t + h;
   return normalised(next);
 }
@@ -203,7 +203,7 @@ State bussStep(const Model& model, const AppliedWrench& input, double h, const S
   const Motion motion = motionOf(model.mass, y);
   const Wrench wrench = totalWrench(model, motion, input);
   const Eigen::Vector3d& w = motion.w_WB_W;
-  const Eigen::Vector3d alpha = motion.I_inv_W * (wrench.torque - w.cross(y.L_W));
+  const Eigen::Vector3d alpha = applyWorldInverseInertia(model.mass, motion.R_WB, wrench.torque - w.cross(y.L_W));
   const Eigen::Vector3d force_rate = w.cross(motion.R_WB * input.body.force) -
                                      (model.forces.linear_damping * model.mass.inverseMass()) * wrench.force;
   const Eigen::Vector3d torque_rate = w.cross(motion.R_WB * input.body.torque) - model.forces.angular_damping * alpha;

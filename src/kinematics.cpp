@@ -2,12 +2,17 @@
 
 namespace rigid_body {
 
+Eigen::Vector3d applyWorldInverseInertia(const MassProperties& mass, const Eigen::Matrix3d& R_WB,
+                                         const Eigen::Vector3d& v_W) {
+  if (mass.isIsotropic()) return mass.inverseInertia()(0, 0) * v_W;  // the same in every axes
+  return R_WB * (mass.inverseInertia() * (R_WB.transpose() * v_W));
+}
+
 Motion motionOf(const MassProperties& mass, const State& state) {
   Motion motion;
   motion.R_WB = state.q_WB.normalized().toRotationMatrix();
-  motion.I_inv_W = motion.R_WB * mass.inverseInertia() * motion.R_WB.transpose();
   motion.v_WB_W = mass.inverseMass() * state.P_W;
-  motion.w_WB_W = motion.I_inv_W * state.L_W;
+  motion.w_WB_W = applyWorldInverseInertia(mass, motion.R_WB, state.L_W);
   return motion;
 }
 

@@ -35,11 +35,10 @@ MassProperties::MassProperties(double mass, const Eigen::Matrix3d& I_Bcm_B,
       I_Bcm_B_(I_Bcm_B),
       I_Bcm_B_inv_(I_Bcm_B.inverse()),
       principal_moments_(principal_moments),
-      R_BP_(R_BP) {}
-
-bool MassProperties::isIsotropic() const {
-  return principal_moments_(2) - principal_moments_(0) <= kRelativeTolerance * principal_moments_(2);
-}
+      R_BP_(R_BP),
+      // Isotropic only when the tensor is exactly I₀𝟙 up to rounding, so that ω = L/I₀ is the same number.
+      isotropic_((I_Bcm_B - I_Bcm_B(0, 0) * Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() <=
+                 1e-15 * std::abs(I_Bcm_B(0, 0))) {}
 
 MassProperties MassProperties::box(double mass, const Eigen::Vector3d& size) {
   requirePositiveFinite(size.x(), "box size x", "m");

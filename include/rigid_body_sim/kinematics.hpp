@@ -12,10 +12,14 @@ namespace rigid_body {
 /// The motion of a body at one instant, derived once and shared by force evaluation and the derivative.
 struct Motion {
   Eigen::Matrix3d R_WB;     ///< R(q): body to world rotation of the normalised q
-  Eigen::Matrix3d I_inv_W;  ///< I⁻¹(t) = R I_Bcm_B⁻¹ Rᵀ [1/(kg m^2)], never a numerical inverse of I(t)
   Eigen::Vector3d v_WB_W;   ///< v = P/M [m/s], world axes
   Eigen::Vector3d w_WB_W;   ///< ω = I⁻¹(t) L [rad/s], world axes
 };
+
+/// I⁻¹(t) v = R I_Bcm_B⁻¹ Rᵀ v [1/(kg m^2)] · v: applied as three matrix–vector products, never forming
+/// I⁻¹(t) (two matrix products) nor inverting I(t); for an isotropic body it is v/I₀, with no rotation at all.
+Eigen::Vector3d applyWorldInverseInertia(const MassProperties& mass, const Eigen::Matrix3d& R_WB,
+                                         const Eigen::Vector3d& v_W);
 
 /// Derives R, I⁻¹(t), v and ω from the state (q is normalised first, so stage states of RK methods with
 /// |q| ≠ 1 still give a rotation).

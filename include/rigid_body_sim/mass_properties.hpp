@@ -50,8 +50,8 @@ class MassProperties {
   /// R_BP: columns are the principal axes in body coordinates (a proper rotation), so that
   /// I_Bcm_B = R_BP diag(principalMoments()) R_BPᵀ.
   const Eigen::Matrix3d& principalAxes() const { return R_BP_; }
-  /// True when I_Bcm_B = I₀𝟙 (sphere, cube): then ω = L/I₀ in any axes.
-  bool isIsotropic() const;
+  /// True when I_Bcm_B = I₀𝟙 (sphere, cube): then ω = L/I₀ in any axes. Decided once, at construction.
+  bool isIsotropic() const { return isotropic_; }
 
  private:
   MassProperties(double mass, const Eigen::Matrix3d& I_Bcm_B, const Eigen::Vector3d& principal_moments,
@@ -63,6 +63,7 @@ class MassProperties {
   Eigen::Matrix3d I_Bcm_B_inv_;
   Eigen::Vector3d principal_moments_;
   Eigen::Matrix3d R_BP_;
+  bool isotropic_;
 };
 
 }  // namespace rigid_body

@@ -61,3 +61,20 @@ TEST(Kinematics, EnergyAndVelocitiesFromMomenta) {
   raised.p_WB.z() = 2.0;
   EXPECT_NEAR(potentialEnergy(box, gravity, raised), 2.0 * 9.81 * 2.0, 1e-13);
 }
+
+TEST(Kinematics, WorldInverseInertiaIsTheGeneralFormulaAndTheIsotropicShortcutAgrees) {
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.8, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
+  const Eigen::Vector3d L(0.3, -1.2, 2.0);
+  const MassProperties box = MassProperties::box(2.0, Eigen::Vector3d(0.4, 0.2, 0.1));
+  EXPECT_FALSE(box.isIsotropic());
+  const Eigen::Matrix3d I_W = R * box.inertia() * R.transpose();
+  EXPECT_TRUE(applyWorldInverseInertia(box, R, L).isApprox(I_W.inverse() * L, 1e-13));
+  // The sphere takes the shortcut ω = L/I₀; the general path gives the same to rounding.
+  const MassProperties sphere = MassProperties::sphere(2.0, 0.3);
+  ASSERT_TRUE(sphere.isIsotropic());
+  const Eigen::Vector3d general = R * (sphere.inverseInertia() * (R.transpose() * L));
+  EXPECT_TRUE(applyWorldInverseInertia(sphere, R, L).isApprox(general, 1e-15));
+  // Nearly isotropic is not isotropic: no shortcut.
+  EXPECT_FALSE(MassProperties::fromInertia(1.0, Eigen::Vector3d(1.0, 1.0, 1.0 + 1e-9).asDiagonal().toDenseMatrix())
+                   .isIsotropic());
+}
