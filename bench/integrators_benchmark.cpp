@@ -30,12 +30,16 @@ State spinningState(const MassProperties& mass) {
                              Eigen::Vector3d(0.5, 0.0, 0.0), Eigen::Vector3d(1.0, 3.0, 0.5));
 }
 
-void stepGeneralBody(benchmark::State& bench, IntegratorType type) {
-  const Model model = generalModel();
+AppliedWrench generalInput() {
   AppliedWrench input;
   input.world.force = Eigen::Vector3d(0.1, 0.0, 15.0);
   input.body.torque = Eigen::Vector3d(0.001, 0.0, 0.002);
-  State state = spinningState(model.mass);
+  return input;
+}
+
+// Times one step of 1 ms per iteration and reports the f evaluations per step.
+void timeSteps(benchmark::State& bench, IntegratorType type, const Model& model, const AppliedWrench& input,
+               State state) {
   Integrator integrator(type);
   for (auto _ : bench) {
     integrator.step(model, input, 0.001, state);
@@ -45,19 +49,16 @@ void stepGeneralBody(benchmark::State& bench, IntegratorType type) {
       static_cast<double>(integrator.statistics().rhs_evaluations) / static_cast<double>(integrator.statistics().steps);
 }
 
+void stepGeneralBody(benchmark::State& bench, IntegratorType type) {
+  const Model model = generalModel();
+  timeSteps(bench, type, model, generalInput(), spinningState(model.mass));
+}
+
 // The general body's scene on an isotropic body (a sphere): ω = L/I₀ skips the world-inertia rotation.
 void stepIsotropicBody(benchmark::State& bench, IntegratorType type) {
   Model model = generalModel();
   model.mass = MassProperties::sphere(1.5, 0.2);
-  AppliedWrench input;
-  input.world.force = Eigen::Vector3d(0.1, 0.0, 15.0);
-  input.body.torque = Eigen::Vector3d(0.001, 0.0, 0.002);
-  State state = spinningState(model.mass);
-  Integrator integrator(type);
-  for (auto _ : bench) {
-    integrator.step(model, input, 0.001, state);
-    benchmark::DoNotOptimize(state);
-  }
+  timeSteps(bench, type, model, generalInput(), spinningState(model.mass));
 }
 
 void stepTorqueFreeBody(benchmark::State& bench, IntegratorType type) {
@@ -65,11 +66,7 @@ void stepTorqueFreeBody(benchmark::State& bench, IntegratorType type) {
                     ForceModel{}};
   State state;
   state.L_W = Eigen::Vector3d(1.0, 0.5, 2.0);
-  Integrator integrator(type);
-  for (auto _ : bench) {
-    integrator.step(model, AppliedWrench(), 0.001, state);
-    benchmark::DoNotOptimize(state);
-  }
+  timeSteps(bench, type, model, AppliedWrench(), state);
 }
 
 int registerAll() {

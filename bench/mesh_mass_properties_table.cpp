@@ -11,6 +11,7 @@
 #include "rigid_body_sim/mass_properties.hpp"
 #include "rigid_body_sim/mesh_mass_properties.hpp"
 #include "rigid_body_sim/mesh_primitives.hpp"
+#include "rigid_body_sim/references.hpp"
 
 using namespace rigid_body;
 
@@ -21,20 +22,6 @@ struct Shape {
   TriangleMesh mesh;
   Eigen::Matrix3d truth;  // about the centre of mass, mass 1 kg
 };
-
-Eigen::Matrix3d lBracketTruth(double leg, double width, double thickness) {
-  // Two boxes by the parallel-axis theorem (as in the tests), total mass 1 kg.
-  const double va = leg * width * thickness, vb = width * (leg - width) * thickness;
-  const double ma = va / (va + vb), mb = vb / (va + vb);
-  const Eigen::Vector3d ca(leg / 2, width / 2, 0), cb(width / 2, (leg + width) / 2, 0);
-  const Eigen::Vector3d c = ma * ca + mb * cb;
-  const auto shifted = [&](const Eigen::Matrix3d& I, double m, const Eigen::Vector3d& p) {
-    const Eigen::Vector3d d = p - c;
-    return Eigen::Matrix3d(I + m * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose()));
-  };
-  return shifted(MassProperties::box(ma, Eigen::Vector3d(leg, width, thickness)).inertia(), ma, ca) +
-         shifted(MassProperties::box(mb, Eigen::Vector3d(width, leg - width, thickness)).inertia(), mb, cb);
-}
 
 }  // namespace
 
@@ -47,7 +34,7 @@ int main() {
       {"sphere r = 0.5 m (icosphere, 5120 triangles)", primitives::icosphere(0.5, 4),
        MassProperties::sphere(1.0, 0.5).inertia()},
       {"L-bracket 100 × 20 × 5 mm (non-convex, 20 triangles)", primitives::lBracket(0.1, 0.02, 0.005),
-       lBracketTruth(0.1, 0.02, 0.005)},
+       reference::lBracket(1.0 / (0.18 * 0.02 * 0.005), 0.1, 0.02, 0.005).inertia},  // density for 1 kg
       {"thin ring r 90–100 mm, 10 mm (128-gon, 1024 triangles)", primitives::ring(r1, r2, h, 128),
        Eigen::Vector3d(ring_transverse, ring_transverse, ring_axial).asDiagonal()},
   };

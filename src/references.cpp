@@ -37,6 +37,23 @@ Eigen::Quaterniond sphereUnderBodyTorque(const Eigen::Quaterniond& q0, double I0
   return q0 * quaternionExp(theta * tau_B.normalized());
 }
 
+SolidMassProperties lBracket(double density, double leg, double width, double thickness) {
+  const Eigen::Vector3d size_a(leg, width, thickness), size_b(width, leg - width, thickness);
+  const Eigen::Vector3d centre_a(leg / 2, width / 2, 0), centre_b(width / 2, (leg + width) / 2, 0);
+  const double mass_a = density * size_a.prod(), mass_b = density * size_b.prod();
+  SolidMassProperties out;
+  out.mass = mass_a + mass_b;
+  out.centre = (mass_a * centre_a + mass_b * centre_b) / out.mass;
+  // Each box about its own centre, I = M/12 diag(y²+z², x²+z², x²+y²), moved to the common centre.
+  const auto moved = [&](double m, const Eigen::Vector3d& size, const Eigen::Vector3d& centre) {
+    const Eigen::Vector3d s2 = size.cwiseProduct(size), d = centre - out.centre;
+    const Eigen::Matrix3d own = (m / 12.0 * Eigen::Vector3d(s2.y() + s2.z(), s2.x() + s2.z(), s2.x() + s2.y())).asDiagonal();
+    return Eigen::Matrix3d(own + m * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose()));
+  };
+  out.inertia = moved(mass_a, size_a, centre_a) + moved(mass_b, size_b, centre_b);
+  return out;
+}
+
 Eigen::Quaterniond symmetricTop(double I_perp, double I_s, const Eigen::Quaterniond& q0, const Eigen::Vector3d& L_W,
                                 double t) {
   const double m3 = (q0.conjugate() * L_W).z();

@@ -21,6 +21,16 @@ Eigen::Vector3d dampedVelocity(const Eigen::Vector3d& v0, double damping, double
 Eigen::Quaterniond sphereUnderBodyTorque(const Eigen::Quaterniond& q0, double I0, const Eigen::Vector3d& tau_B,
                                          double t);
 
+/// Mass properties of a solid L-bracket (legs of length `leg` along +x and +y from the origin, width
+/// `width`, thickness along z centred at z = 0; primitives::lBracket's shape), as two boxes joined by the
+/// parallel-axis theorem: [0, leg]×[0, width] and [0, width]×[width, leg].
+struct SolidMassProperties {
+  double mass;                 ///< [kg]
+  Eigen::Vector3d centre;      ///< centre of mass [m]
+  Eigen::Matrix3d inertia;     ///< about the centre of mass [kg m²]
+};
+SolidMassProperties lBracket(double density, double leg, double width, double thickness);
+
 /// §2.1 Torque-free symmetric top, I = diag(I⊥, I⊥, I_s) in body axes, world momentum L_W:
 /// q(t) = exp(t L_W/I⊥) ⊗ q₀ ⊗ exp(t (1/I_s − 1/I⊥) m₃ e₃), m₃ = (q₀⁻¹ L_W)_z.
 Eigen::Quaterniond symmetricTop(double I_perp, double I_s, const Eigen::Quaterniond& q0, const Eigen::Vector3d& L_W,

@@ -8,6 +8,7 @@
 #include "rigid_body_sim/mesh_io.hpp"
 #include "rigid_body_sim/mesh_mass_properties.hpp"
 #include "rigid_body_sim/mesh_primitives.hpp"
+#include "rigid_body_sim/references.hpp"
 
 using namespace rigid_body;
 
@@ -73,27 +74,14 @@ TEST(MeshMassProperties, MovingTheMeshMovesTheCentreAndTurnsTheTensor) {
 }
 
 TEST(MeshMassProperties, LBracketEqualsTwoBoxesByTheParallelAxisTheorem) {
-  const double leg = 0.1, width = 0.02, thickness = 0.005, density = 2700.0;
-  // Box A: [0, leg] × [0, width]; box B: [0, width] × [width, leg].
-  const auto part = [&](const Eigen::Vector3d& size, const Eigen::Vector3d& centre, double& mass) {
-    mass = density * size.prod();
-    return std::make_pair(MassProperties::box(mass, size).inertia(), centre);
-  };
-  double ma, mb;
-  const auto a = part(Eigen::Vector3d(leg, width, thickness), Eigen::Vector3d(leg / 2, width / 2, 0), ma);
-  const auto b = part(Eigen::Vector3d(width, leg - width, thickness), Eigen::Vector3d(width / 2, (leg + width) / 2, 0), mb);
-  const Eigen::Vector3d c = (ma * a.second + mb * b.second) / (ma + mb);
-  const auto shifted = [&](const Eigen::Matrix3d& I, double m, const Eigen::Vector3d& p) {
-    const Eigen::Vector3d d = p - c;
-    return Eigen::Matrix3d(I + m * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose()));
-  };
-  const Eigen::Matrix3d expected = shifted(a.first, ma, a.second) + shifted(b.first, mb, b.second);
+  const double density = 2700.0;
+  const reference::SolidMassProperties expected = reference::lBracket(density, 0.1, 0.02, 0.005);
   MeshMassOptions options;
   options.density = density;
   const MeshMassProperties p = meshMassProperties(loadMesh(kMeshes + "/l_bracket.obj"), options);
-  EXPECT_NEAR(p.mass, ma + mb, 1e-12 * (ma + mb));
-  EXPECT_LT((p.p_MBcm - c).norm(), 1e-15);
-  EXPECT_LT(relativeError(p.I_Bcm_M, expected), 1e-12);
+  EXPECT_NEAR(p.mass, expected.mass, 1e-12 * expected.mass);
+  EXPECT_LT((p.p_MBcm - expected.centre).norm(), 1e-15);
+  EXPECT_LT(relativeError(p.I_Bcm_M, expected.inertia), 1e-12);
   EXPECT_GT(std::abs(p.I_Bcm_M(0, 1)), 1e-3 * p.I_Bcm_M(0, 0));  // a real product of inertia
 }
 
