@@ -33,14 +33,4 @@ Derivative derivative(const Model& model, const State& state, const AppliedWrenc
   return rate;
 }
 
-State addScaled(const State& state, const Derivative& rate, double h) {
-  State next;
-  next.p_WB = state.p_WB + h * rate.p_dot;
-  next.q_WB.coeffs() = state.q_WB.coeffs() + h * rate.q_dot;
-  next.P_W = state.P_W + h * rate.P_dot;
-  next.L_W = state.L_W + h * rate.L_dot;
-  next.t = state.t + h;
-  return next;
-}
-
 }  // namespace rigid_body

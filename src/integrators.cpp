@@ -108,6 +108,9 @@ State rungeKutta(const Tableau<S>& tableau, OrientationUpdate mode, const Model&
   return next;
 }
 
+// Explicit Euler, the one-stage method: Y_{n+1} = Y_n + h f(Y_n), then q ← q/|q| (the seed's method).
+const Tableau<1> kEulerTableau = {{{{{0}}}}, {{1}}};
+
 // Classic RK4: c = (0, ½, ½, 1), b = (1/6, 1/3, 1/3, 1/6).
 const Tableau<4> kRk4Tableau = {{{{{0, 0, 0, 0}}, {{0.5, 0, 0, 0}}, {{0, 0.5, 0, 0}}, {{0, 0, 1, 0}}}},
                                 {{1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6}}};
@@ -169,16 +172,8 @@ bool sameState(const State& a, const State& b) {
   return a.p_WB == b.p_WB && a.q_WB.coeffs() == b.q_WB.coeffs() && a.P_W == b.P_W && a.L_W == b.L_W && a.t == b.t;
 }
 
-bool sameInput(const AppliedWrench& a, const AppliedWrench& b) {
-  return a.world.force == b.world.force && a.world.torque == b.world.torque && a.body.force == b.body.force &&
-         a.body.torque == b.body.torque;
-}
 
 // ------------------------------------------------------------------------------------------------------
-// Explicit Euler: Y_{n+1} = Y_n + h f(Y_n), then q ← q/|q| (the seed's method).
-State explicitEulerStep(const Model& model, const AppliedWrench& input, double h, const State& y) {
-  return normalised(addScaled(y, derivative(model, y, input), h));
-}
 
 // Semi-implicit (symplectic) Euler: the momenta take the wrench of Y_n, then the configuration moves with
 // the new velocities: x += h P_{n+1}/M and q ← exp(h ω_{n+1}) ⊗ q with ω_{n+1} = I⁻¹(q_n) L_{n+1}.
@@ -386,10 +381,12 @@ StepStatus Integrator::step(const Model& model, const AppliedWrench& input, doub
 
 StepStatus Integrator::doStep(const Model& model, const AppliedWrench& input, double h, State& state) {
   switch (type_) {
-    case IntegratorType::kExplicitEuler:
+    case IntegratorType::kExplicitEuler: {
+      Stages<1> stages;
       statistics_.rhs_evaluations += 1;
-      state = explicitEulerStep(model, input, h, state);
+      state = normalised(rungeKutta(kEulerTableau, OrientationUpdate::kAdditive, model, input, h, state, stages));
       return StepStatus::kOk;
+    }
     case IntegratorType::kSemiImplicitEuler:
       statistics_.rhs_evaluations += 1;
       state = semiImplicitEulerStep(model, input, h, state);
@@ -433,7 +430,7 @@ StepStatus Integrator::doStep(const Model& model, const AppliedWrench& input, do
 StepStatus Integrator::dopri5Step(const Model& model, const AppliedWrench& input, double h, State& state) {
   DopriMemory& memory = dopri_;
   const double target = state.t + h;
-  const bool continuing = memory.valid && sameState(state, memory.last_output) && sameInput(input, memory.input);
+  const bool continuing = memory.valid && sameState(state, memory.last_output) && input == memory.input;
   if (!continuing) {
     memory.valid = false;
     memory.coefficients.col(0) = pack(state);  // frontier y1 = rcont1 + rcont2 with rcont2 = 0
@@ -463,22 +460,20 @@ StepStatus Integrator::dopri5Step(const Model& model, const AppliedWrench& input
       have_fsal = true;
       fsal = stages.k[0];
       const Vector13 y1_packed = pack(y1);
-      Vector13 error = Vector13::Zero();
-      for (int j = 0; j < 7; ++j) error += (step * kDopri5ErrorWeights[j]) * pack(stages.k[j]);
+      Eigen::Matrix<double, 13, 7> K;  // the stage derivatives k_1 … k_7 as columns
+      for (int j = 0; j < 7; ++j) K.col(j) = pack(stages.k[j]);
+      const Vector13 error = step * K * Eigen::Map<const Eigen::Matrix<double, 7, 1>>(kDopri5ErrorWeights.data());
       const Eigen::Array<double, 13, 1> scale =
           settings_.abs_tolerance + settings_.rel_tolerance * y0_packed.cwiseAbs().cwiseMax(y1_packed.cwiseAbs()).array();
       const double norm = std::sqrt((error.array() / scale).square().mean());
       last_attempt_finite = std::isfinite(norm);
       if (std::isfinite(norm) && norm <= 1.0) {
-        const Vector13 k1 = pack(stages.k[0]);
-        const Vector13 k7 = pack(stages.k[6]);
         Eigen::Matrix<double, 13, 5>& c = memory.coefficients;
         c.col(0) = y0_packed;
         c.col(1) = y1_packed - y0_packed;
-        c.col(2) = step * k1 - c.col(1);
-        c.col(3) = c.col(1) - step * k7 - c.col(2);
-        c.col(4).setZero();
-        for (int j = 0; j < 7; ++j) c.col(4) += (step * kDopri5Dense[j]) * pack(stages.k[j]);
+        c.col(2) = step * K.col(0) - c.col(1);
+        c.col(3) = c.col(1) - step * K.col(6) - c.col(2);
+        c.col(4) = step * K * Eigen::Map<const Eigen::Matrix<double, 7, 1>>(kDopri5Dense.data());
         memory.t0 = y0.t;
         memory.h = step;
         memory.valid = true;
@@ -487,9 +482,7 @@ StepStatus Integrator::dopri5Step(const Model& model, const AppliedWrench& input
         memory.next_h = step * std::min(kMaxGrowth, std::max(kMinShrink, growth));
         break;
       }
-      ++statistics_.rejected_steps;
-      have_fsal = true;  // k1 = f(y0) is still valid for the retry
-      fsal = stages.k[0];
+      ++statistics_.rejected_steps;  // k1 = f(y0), kept in fsal above, serves the retry
       const double shrink = std::isfinite(norm) ? kSafety * std::pow(norm, -0.2) : kMinShrink;
       step *= std::min(1.0, std::max(kMinShrink, shrink));
     }

@@ -43,16 +43,6 @@ const char* divergenceName(Divergence divergence) {
   return "unknown";
 }
 
-namespace {
-
-bool noInput(const AppliedWrench& input) {
-  return input.world.force.isZero(0.0) && input.world.torque.isZero(0.0) && input.body.force.isZero(0.0) &&
-         input.body.torque.isZero(0.0);
-}
-
-
-}  // namespace
-
 std::int64_t Simulation::clockStepsAt(double elapsed) const {
   return anchor_steps_ + wholeStepsIn(elapsed - anchor_elapsed_, dt_);
 }
@@ -91,7 +81,7 @@ AdvanceResult Simulation::integrate(std::int64_t steps) {
   integrated_steps_ += result.steps;
   if (result.status == StepStatus::kNonFinite || result.status == StepStatus::kNotConverged) {
     divergence_ = result.status == StepStatus::kNonFinite ? Divergence::kNonFiniteState : Divergence::kStepFailure;
-  } else if (std::isfinite(max_energy_growth_) && noInput(input_)) {
+  } else if (std::isfinite(max_energy_growth_) && input_.isZero()) {
     // With no commanded wrench the mechanical energy E = T + V cannot grow (damping only removes it). A
     // method's error may move it in proportion to the energy in play: E itself and the work of gravity
     // W = M g·Δx over the call (explicit Euler under gravity gains O(h) of W). A growth beyond

@@ -40,7 +40,4 @@ Eigen::Vector4d quaternionRate(const Eigen::Vector3d& w_WB_W, const Eigen::Quate
 /// Ẏ = f(Y, u).
 Derivative derivative(const Model& model, const State& state, const AppliedWrench& input);
 
-/// Y + h Ẏ on every component (no renormalisation of q: a stage state of a Runge–Kutta method), t + h.
-State addScaled(const State& state, const Derivative& rate, double h);
-
 }  // namespace rigid_body

@@ -18,6 +18,7 @@ struct Wrench {
     return *this;
   }
   bool isFinite() const { return force.allFinite() && torque.allFinite(); }
+  bool operator==(const Wrench& other) const { return force == other.force && torque == other.torque; }
 };
 
 /// The commanded input, held constant over a step. Its two parts differ in what stays fixed while the
@@ -26,6 +27,10 @@ struct Wrench {
 struct AppliedWrench {
   Wrench world;  ///< F_W, τ_W: fixed in world axes
   Wrench body;   ///< F_B, τ_B: fixed in body axes
+
+  bool operator==(const AppliedWrench& other) const { return world == other.world && body == other.body; }
+  /// No input at all (every component exactly zero).
+  bool isZero() const { return *this == AppliedWrench(); }
 };
 
 /// Force models of the scene, evaluated from the state at every stage of a step.

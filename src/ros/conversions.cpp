@@ -15,11 +15,6 @@ WrenchFrame classifyWrenchFrame(const std::string& frame_id, const std::string& 
   return WrenchFrame::kOther;
 }
 
-bool isFinite(const geometry_msgs::Wrench& wrench) {
-  return std::isfinite(wrench.force.x) && std::isfinite(wrench.force.y) && std::isfinite(wrench.force.z) &&
-         std::isfinite(wrench.torque.x) && std::isfinite(wrench.torque.y) && std::isfinite(wrench.torque.z);
-}
-
 rigid_body::Wrench toWrench(const geometry_msgs::Wrench& wrench) {
   rigid_body::Wrench result;
   tf2::fromMsg(wrench.force, result.force);
@@ -28,10 +23,10 @@ rigid_body::Wrench toWrench(const geometry_msgs::Wrench& wrench) {
 }
 
 rigid_body::Wrench wrenchInWorld(const geometry_msgs::Wrench& wrench_F, const Eigen::Isometry3d& X_WF,
-                                 const Eigen::Vector3d& p_WB) {
+                                 const Eigen::Vector3d& p_WB, const Eigen::Vector3d* p_FQ) {
   const rigid_body::Wrench in_F = toWrench(wrench_F);
-  return rigid_body::wrenchAboutCentreOfMass(X_WF.linear() * in_F.force, X_WF.linear() * in_F.torque,
-                                             X_WF.translation(), p_WB);
+  const Eigen::Vector3d p_WQ = p_FQ ? Eigen::Vector3d(X_WF * *p_FQ) : Eigen::Vector3d(X_WF.translation());
+  return rigid_body::wrenchAboutCentreOfMass(X_WF.linear() * in_F.force, X_WF.linear() * in_F.torque, p_WQ, p_WB);
 }
 
 void fillOdometry(const rigid_body::MassProperties& mass, const rigid_body::State& state, nav_msgs::Odometry& odom) {

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -87,7 +88,7 @@ const XmlRpcValue* find(const XmlRpcValue& params, const std::string& name) {
   std::string key;
   while (std::getline(path, key, '/')) {
     if (node->getType() != XmlRpcValue::TypeStruct || !node->hasMember(key)) return nullptr;
-    node = &(*const_cast<XmlRpcValue*>(node))[key];
+    node = &(*node)[key];
   }
   return node;
 }
@@ -102,6 +103,17 @@ double readNumber(const XmlRpcValue& params, const std::string& name, double fal
   const double number = asNumber(*value);
   if (!std::isfinite(number) || !accept(number)) fail(name, *value, allowed);
   return number;
+}
+
+// An integer >= minimum (a double is refused: a count or a seed is not a measurement).
+int readInteger(const XmlRpcValue& params, const std::string& name, int fallback, int minimum,
+                const std::string& allowed) {
+  const XmlRpcValue* value = find(params, name);
+  if (!value) return fallback;
+  if (value->getType() != XmlRpcValue::TypeInt || static_cast<const int&>(*value) < minimum) {
+    fail(name, *value, allowed);
+  }
+  return static_cast<const int&>(*value);
 }
 
 // roscpp turns a rosrun argument _size:=[0.4,0.2,0.1] into the string "[0.4,0.2,0.1]" (it parses only
@@ -154,7 +166,7 @@ std::string readString(const XmlRpcValue& params, const std::string& name, const
   const XmlRpcValue* value = find(params, name);
   if (!value) return fallback;
   if (value->getType() != XmlRpcValue::TypeString) fail(name, *value, allowed);
-  return static_cast<std::string>(*const_cast<XmlRpcValue*>(value));
+  return static_cast<const std::string&>(*value);
 }
 
 std::string readFrame(const XmlRpcValue& params, const std::string& name, const std::string& fallback) {
@@ -170,7 +182,7 @@ bool readBool(const XmlRpcValue& params, const std::string& name, bool fallback)
   const XmlRpcValue* value = find(params, name);
   if (!value) return fallback;
   if (value->getType() != XmlRpcValue::TypeBoolean) fail(name, *value, "must be true or false");
-  return static_cast<bool>(*const_cast<XmlRpcValue*>(value));
+  return static_cast<const bool&>(*value);
 }
 
 // shape: mesh. The body frame is the mesh's centre of mass, with the mesh's axes or its principal axes.
@@ -197,13 +209,9 @@ rigid_body::MassProperties readMeshMassProperties(const XmlRpcValue& params, Nod
   } catch (const std::invalid_argument&) {
     fail("inertia_method", *find(params, "inertia_method"), method_allowed);
   }
-  const XmlRpcValue* samples = find(params, "samples");
-  if (samples) {
-    if (samples->getType() != XmlRpcValue::TypeInt || static_cast<int>(*const_cast<XmlRpcValue*>(samples)) < 1) {
-      fail("samples", *samples, "must be an integer >= 1 (points drawn for inertia_method sampling)");
-    }
-    options.samples = static_cast<std::uint64_t>(static_cast<int>(*const_cast<XmlRpcValue*>(samples)));
-  }
+  options.samples = static_cast<std::uint64_t>(
+      readInteger(params, "samples", static_cast<int>(options.samples), 1,
+                  "must be an integer >= 1 (points drawn for inertia_method sampling)"));
   const bool principal_axes = readBool(params, "principal_axes", false);
   try {
     const rigid_body::MeshMassProperties properties =
@@ -342,13 +350,8 @@ NodeConfig parseConfig(const XmlRpcValue& params) {
   config.max_energy_growth = readNumber(params, "max_energy_growth", config.max_energy_growth,
                                         [](double g) { return g > 1.0; },
                                         "must be a finite number > 1 (energy factor per tick)");
-  const XmlRpcValue* substeps = find(params, "max_substeps");
-  if (substeps) {
-    if (substeps->getType() != XmlRpcValue::TypeInt || static_cast<int>(*const_cast<XmlRpcValue*>(substeps)) < 1) {
-      fail("max_substeps", *substeps, "must be an integer >= 1");
-    }
-    config.max_substeps = static_cast<int>(*const_cast<XmlRpcValue*>(substeps));
-  }
+  config.max_substeps = readInteger(params, "max_substeps", static_cast<int>(config.max_substeps), 1,
+                                    "must be an integer >= 1");
   config.publish_tf = readBool(params, "publish_tf", true);
   config.mesh_frame = readString(params, "mesh_frame", "", "must be a tf2 frame id");
   if (!config.mesh_frame.empty()) {
@@ -369,10 +372,8 @@ NodeConfig parseConfig(const XmlRpcValue& params) {
   config.noise.linear_velocity_stddev = readStddev("linear_velocity_stddev", "[m/s]");
   config.noise.angular_velocity_stddev = readStddev("angular_velocity_stddev", "[rad/s]");
   config.noise.delay = readNumber(params, "noise/delay", 0.0, [](double d) { return d >= 0.0; }, "must be a finite number >= 0 [s]");
-  if (const XmlRpcValue* seed = find(params, "noise/seed")) {
-    if (seed->getType() != XmlRpcValue::TypeInt) fail("noise/seed", *seed, "must be an integer");
-    config.noise.seed = static_cast<int>(*const_cast<XmlRpcValue*>(seed));
-  }
+  config.noise.seed = readInteger(params, "noise/seed", config.noise.seed, std::numeric_limits<int>::min(),
+                                  "must be an integer");
   collectUnknown(params, "", kTopLevelNames, config.unknown_parameters);
   if (const XmlRpcValue* noise = find(params, "noise")) collectUnknown(*noise, "noise/", kNoiseNames, config.unknown_parameters);
   if (const XmlRpcValue* initial = find(params, "initial")) {

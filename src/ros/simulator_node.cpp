@@ -153,7 +153,7 @@ void SimulatorNode::advanceToStep(std::int64_t target) {
       if (timed.start > k) next = std::min(next, timed.start);
       if (timed.end > k) next = std::min(next, timed.end);
     }
-    simulation_.setInput(inputAtStep(k));
+    refreshInput();
     const rigid_body::AdvanceResult result = simulation_.advanceToStep(next);
     counters_.last_substeps = result.steps;
     counters_.max_substeps_seen = std::max(counters_.max_substeps_seen, result.steps);
@@ -172,8 +172,10 @@ void SimulatorNode::advanceToStep(std::int64_t target) {
   timed_wrenches_.erase(std::remove_if(timed_wrenches_.begin(), timed_wrenches_.end(),
                                        [k](const TimedWrench& timed) { return timed.end >= 0 && timed.end <= k; }),
                         timed_wrenches_.end());
-  simulation_.setInput(inputAtStep(k));
+  refreshInput();
 }
+
+void SimulatorNode::refreshInput() { simulation_.setInput(inputAtStep(simulation_.clockSteps())); }
 
 rigid_body::AppliedWrench SimulatorNode::inputAtStep(std::int64_t k) const {
   rigid_body::AppliedWrench input = topic_input_;
@@ -193,7 +195,7 @@ void SimulatorNode::expireWrench(const ros::Time& now) {
   if (now < expiry) return;
   advanceTo(expiry);  // the wrench acts up to its expiry, not up to this tick
   topic_input_ = rigid_body::AppliedWrench();
-  simulation_.setInput(inputAtStep(simulation_.clockSteps()));
+  refreshInput();
   wrench_active_ = false;
   wrench_timed_out_ = true;
   ++counters_.wrench_timeouts;
@@ -335,8 +337,8 @@ bool SimulatorNode::toAppliedWrench(const geometry_msgs::Wrench& wrench, const s
       out.body = given;
       return true;
     case WrenchFrame::kWorld:
-      out.world = point ? rigid_body::wrenchAboutCentreOfMass(given.force, given.torque, *point, simulation_.state().p_WB)
-                        : given;
+      // About the centre of mass unless a point is given (world axes: the transform is the identity).
+      out.world = point ? wrenchInWorld(wrench, Eigen::Isometry3d::Identity(), simulation_.state().p_WB, point) : given;
       return true;
     case WrenchFrame::kOther:
       break;
@@ -354,16 +356,13 @@ bool SimulatorNode::toAppliedWrench(const geometry_msgs::Wrench& wrench, const s
     ROS_WARN_THROTTLE(kWarningPeriod, "rigid_body_node: rejected a wrench in frame '%s': %s", frame.c_str(), error.what());
     return false;
   }
-  const Eigen::Isometry3d X = tf2::transformToEigen(X_WF);
-  const Eigen::Vector3d p_W = point ? Eigen::Vector3d(X * *point) : Eigen::Vector3d(X.translation());
-  out.world = rigid_body::wrenchAboutCentreOfMass(X.linear() * given.force, X.linear() * given.torque, p_W,
-                                                  simulation_.state().p_WB);
+  out.world = wrenchInWorld(wrench, tf2::transformToEigen(X_WF), simulation_.state().p_WB, point);
   return true;
 }
 
 void SimulatorNode::setTopicWrench(const rigid_body::AppliedWrench& input, const ros::Time& now) {
   topic_input_ = input;
-  simulation_.setInput(inputAtStep(simulation_.clockSteps()));
+  refreshInput();
   ++counters_.wrenches_applied;
   wrench_active_ = true;
   wrench_timed_out_ = false;
@@ -452,7 +451,7 @@ bool SimulatorNode::onStep(rigid_body_sim::Step::Request& request, rigid_body_si
   } else {
     // ROS time belongs to someone else: the body takes N steps now, the clock stays where it is.
     advanceTo(now());
-    simulation_.setInput(inputAtStep(simulation_.clockSteps()));
+    refreshInput();
     simulation_.stepNow(request.steps);
   }
   response.success = simulation_.divergence() == rigid_body::Divergence::kNone;
@@ -490,7 +489,7 @@ bool SimulatorNode::onApplyWrench(rigid_body_sim::ApplyWrench::Request& request,
   timed.end = duration < 0.0 ? -1
                              : timed.start + std::max<std::int64_t>(1, std::llround(duration / config_.dt));
   timed_wrenches_.push_back(timed);
-  simulation_.setInput(inputAtStep(k));
+  refreshInput();
   response.success = true;
   response.message = "acting from step " + std::to_string(timed.start) +
                      (timed.end < 0 ? " until clear_wrenches" : " to step " + std::to_string(timed.end));
@@ -502,7 +501,7 @@ bool SimulatorNode::onClearWrenches(std_srvs::Empty::Request&, std_srvs::Empty::
   timed_wrenches_.clear();
   topic_input_ = rigid_body::AppliedWrench();
   wrench_active_ = false;
-  simulation_.setInput(inputAtStep(simulation_.clockSteps()));
+  refreshInput();
   return true;
 }
 

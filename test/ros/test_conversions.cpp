@@ -7,6 +7,7 @@
 
 #include "rigid_body_sim/kinematics.hpp"
 #include "rigid_body_sim/ros/conversions.hpp"
+#include "rigid_body_sim/wrench_limits.hpp"
 
 using namespace rigid_body_ros;
 
@@ -18,13 +19,15 @@ TEST(Conversions, WrenchFrameClassification) {
 }
 
 TEST(Conversions, NonFiniteWrenchIsDetectedInEveryComponent) {
+  // The node's path: message → toWrench → checkWrench.
   for (int i = 0; i < 6; ++i) {
     geometry_msgs::Wrench wrench;
     double* fields[] = {&wrench.force.x, &wrench.force.y, &wrench.force.z,
                         &wrench.torque.x, &wrench.torque.y, &wrench.torque.z};
-    EXPECT_TRUE(isFinite(wrench));
+    EXPECT_EQ(rigid_body::checkWrench(toWrench(wrench), rigid_body::WrenchLimits()), rigid_body::WrenchVerdict::kAccepted);
     *fields[i] = (i % 2) ? std::numeric_limits<double>::infinity() : std::nan("");
-    EXPECT_FALSE(isFinite(wrench)) << i;
+    EXPECT_EQ(rigid_body::checkWrench(toWrench(wrench), rigid_body::WrenchLimits()), rigid_body::WrenchVerdict::kNonFinite)
+        << i;
   }
 }
 
@@ -40,6 +43,14 @@ TEST(Conversions, WrenchInAnotherFrameGetsRotatedAndTheMomentArm) {
   EXPECT_TRUE(in_W.force.isApprox(Eigen::Vector3d(0.0, 2.0, 0.0), 1e-15));
   // τ = (0, 0, 0.5) + (1, 0, 0) × (0, 2, 0) = (0, 0, 2.5)
   EXPECT_TRUE(in_W.torque.isApprox(Eigen::Vector3d(0.0, 0.0, 2.5), 1e-15));
+  // At F's point (0, 1, 0), which is the world origin (the centre of mass): no moment arm, τ = (0, 0, 0.5)
+  // where F's origin gave 2.5.
+  const Eigen::Vector3d p_FQ(0.0, 1.0, 0.0);
+  const rigid_body::Wrench at_point = wrenchInWorld(wrench_F, X_WF, Eigen::Vector3d::Zero(), &p_FQ);
+  EXPECT_TRUE(at_point.force.isApprox(Eigen::Vector3d(0.0, 2.0, 0.0), 1e-15));
+  EXPECT_TRUE(at_point.torque.isApprox(Eigen::Vector3d(0.0, 0.0, 0.5), 1e-15)) << at_point.torque.transpose();
+  // Seen from a centre of mass at (−1, 0, 0) the same point has arm (1, 0, 0): τ_z = 0.5 + 2.
+  EXPECT_NEAR(wrenchInWorld(wrench_F, X_WF, Eigen::Vector3d(-1, 0, 0), &p_FQ).torque.z(), 2.5, 1e-15);
 }
 
 TEST(Conversions, OdometryTwistIsInTheBodyFrame) {

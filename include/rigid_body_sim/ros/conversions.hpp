@@ -25,16 +25,14 @@ enum class WrenchFrame {
 WrenchFrame classifyWrenchFrame(const std::string& frame_id, const std::string& world_frame,
                                 const std::string& body_frame);
 
-/// True if all six components are finite.
-bool isFinite(const geometry_msgs::Wrench& wrench);
-
 /// The message's force and torque as they are (no change of axes).
 rigid_body::Wrench toWrench(const geometry_msgs::Wrench& wrench);
 
-/// A wrench given in frame F (force and torque in F's axes, torque about F's origin) in world axes about
-/// the centre of mass: F_W = R_WF F_F, τ_W = R_WF τ_F + (p_WF − p_WB) × F_W.
+/// A wrench given in frame F (force and torque in F's axes) in world axes about the centre of mass:
+/// F_W = R_WF F_F, τ_W = R_WF τ_F + (p_WQ − p_WB) × F_W, where Q is the point the force acts at: `p_FQ`
+/// (in F's coordinates) if given, else F's origin.
 rigid_body::Wrench wrenchInWorld(const geometry_msgs::Wrench& wrench_F, const Eigen::Isometry3d& X_WF,
-                                 const Eigen::Vector3d& p_WB);
+                                 const Eigen::Vector3d& p_WB, const Eigen::Vector3d* p_FQ = nullptr);
 
 /// Pose and twist of an Odometry message (REP 105): pose of the body in the world frame, twist (linear
 /// velocity of the origin of the body frame and angular velocity) in the body frame: v_B = Rᵀ v_W, ω_B = Rᵀ ω_W.

@@ -103,6 +103,8 @@ class SimulatorNode {
   void advanceToStep(std::int64_t target);
   /// The topic wrench plus every service wrench active at clock step k.
   rigid_body::AppliedWrench inputAtStep(std::int64_t k) const;
+  /// Gives the simulation the input of its current clock step (after any change of the wrench sources).
+  void refreshInput();
   /// Turns a validated message wrench (in `frame`) into world- or body-fixed parts, about the centre of mass;
   /// `point`, if given, is where the force acts, in `frame`. False if the frame cannot be resolved.
   bool toAppliedWrench(const geometry_msgs::Wrench& wrench, const std::string& frame, const ros::Time& stamp,
