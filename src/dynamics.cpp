@@ -1,18 +1,47 @@
 #include "rigid_body_sim/dynamics.hpp"
 
+#include "rigid_body_sim/rotation.hpp"
+
 namespace rigid_body {
 
+Eigen::Vector3d applyWorldInverseInertia(const Model& model, const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& v_W) {
+  if (!model.terms.world_inertia) return model.mass.inverseInertia()(0, 0) * v_W;  // isotropic: any axes
+  return R_WB * (model.mass.inverseInertia() * (R_WB.transpose() * v_W));
+}
+
+Motion motionOf(const Model& model, const State& state) {
+  Motion motion;
+  const StepTerms& terms = model.terms;
+  // R of the unnormalised stage quaternion (rotationMatrix scales by 1/|q|², no square root); not formed when
+  // nothing uses it (no rotation and no input to turn).
+  if (terms.rotation || terms.input) {
+    motion.R_WB = rotationMatrix(state.q_WB);
+  } else {
+    motion.R_WB.setIdentity();
+  }
+  motion.v_WB_W = model.mass.inverseMass() * state.P_W;
+  if (terms.rotation) {
+    motion.w_WB_W = applyWorldInverseInertia(model, motion.R_WB, state.L_W);
+  } else {
+    motion.w_WB_W.setZero();
+  }
+  return motion;
+}
+
 Wrench externalWrench(const Model& model, const Eigen::Matrix3d& R_WB, const AppliedWrench& input) {
-  Wrench external = input.world;
-  external.force += R_WB * input.body.force + model.mass.mass() * model.forces.gravity_W;
-  external.torque += R_WB * input.body.torque;
+  Wrench external;
+  if (model.terms.input) {
+    external.force = input.world.force + R_WB * input.body.force;
+    external.torque = input.world.torque + R_WB * input.body.torque;
+  }
+  if (model.terms.gravity) external.force += model.mass.mass() * model.forces.gravity_W;
   return external;
 }
 
 Wrench totalWrench(const Model& model, const Motion& motion, const AppliedWrench& input) {
   Wrench total = externalWrench(model, motion.R_WB, input);
-  total.force -= model.forces.linear_damping * motion.v_WB_W;
-  total.torque -= model.forces.angular_damping * motion.w_WB_W;
+  if (model.terms.linear_damping) total.force -= model.forces.linear_damping * motion.v_WB_W;
+  if (model.terms.angular_damping) total.torque -= model.forces.angular_damping * motion.w_WB_W;
   return total;
 }
 
@@ -22,14 +51,19 @@ Eigen::Vector4d quaternionRate(const Eigen::Vector3d& w_WB_W, const Eigen::Quate
 }
 
 Derivative derivative(const Model& model, const State& state, const AppliedWrench& input) {
-  const Motion motion = motionOf(model.mass, state);
+  const Motion motion = motionOf(model, state);
   const Wrench wrench = totalWrench(model, motion, input);
   Derivative rate;
   rate.p_dot = motion.v_WB_W;
-  rate.q_dot = quaternionRate(motion.w_WB_W, state.q_WB);
   rate.P_dot = wrench.force;
-  rate.L_dot = wrench.torque;
   rate.w_WB_W = motion.w_WB_W;
+  if (model.terms.rotation) {
+    rate.q_dot = quaternionRate(motion.w_WB_W, state.q_WB);
+    rate.L_dot = wrench.torque;
+  } else {
+    rate.q_dot.setZero();
+    rate.L_dot.setZero();
+  }
   return rate;
 }
 

@@ -59,10 +59,11 @@ Eigen::Vector3d dexpInverse(const Eigen::Vector3d& theta, const Eigen::Vector3d&
   return w - 0.5 * theta_w + theta.cross(theta_w) / 12.0;
 }
 
-// Y + h Σ_{j<count} weights_j k_j; for kLieGroup also returns Θ.
+// Y + h Σ_{j<count} weights_j k_j; for kLieGroup also returns Θ. Without the rotation term q and L are
+// left as they are (their rates are zero).
 template <std::size_t S>
 State combine(const State& y, const Stages<S>& stages, const std::array<double, S>& weights, std::size_t count, double h,
-              OrientationUpdate mode, Eigen::Vector3d* theta) {
+              OrientationUpdate mode, bool rotation, Eigen::Vector3d* theta) {
   State next = y;
   Eigen::Vector4d q_sum = Eigen::Vector4d::Zero();
   Eigen::Vector3d algebra_sum = Eigen::Vector3d::Zero();
@@ -72,6 +73,7 @@ State combine(const State& y, const Stages<S>& stages, const std::array<double, 
     const Derivative& k = stages.k[j];
     next.p_WB += w * k.p_dot;
     next.P_W += w * k.P_dot;
+    if (!rotation) continue;
     next.L_W += w * k.L_dot;
     if (mode == OrientationUpdate::kAdditive) {
       q_sum += w * k.q_dot;
@@ -79,7 +81,9 @@ State combine(const State& y, const Stages<S>& stages, const std::array<double, 
       algebra_sum += w * stages.algebra[j];
     }
   }
-  if (mode == OrientationUpdate::kAdditive) {
+  if (!rotation) {
+    if (theta) theta->setZero();
+  } else if (mode == OrientationUpdate::kAdditive) {
     next.q_WB.coeffs() += q_sum;
   } else {
     next.q_WB = quaternionExp(algebra_sum) * y.q_WB;
@@ -98,12 +102,12 @@ State rungeKutta(const Tableau<S>& tableau, OrientationUpdate mode, const Model&
     if (i == 0 && first) {
       stages.k[0] = *first;
     } else {
-      const State stage = i == 0 ? y : combine(y, stages, tableau.a[i], i, h, mode, &theta);
+      const State stage = i == 0 ? y : combine(y, stages, tableau.a[i], i, h, mode, model.terms.rotation, &theta);
       stages.k[i] = derivative(model, stage, input);
     }
     if (mode == OrientationUpdate::kLieGroup) stages.algebra[i] = dexpInverse(theta, stages.k[i].w_WB_W);
   }
-  State next = combine(y, stages, tableau.b, S, h, mode, nullptr);
+  State next = combine(y, stages, tableau.b, S, h, mode, model.terms.rotation, nullptr);
   next.t = y.t + h;
   return next;
 }
@@ -178,14 +182,15 @@ bool sameState(const State& a, const State& b) {
 // Semi-implicit (symplectic) Euler: the momenta take the wrench of Y_n, then the configuration moves with
 // the new velocities: x += h P_{n+1}/M and q ← exp(h ω_{n+1}) ⊗ q with ω_{n+1} = I⁻¹(q_n) L_{n+1}.
 State semiImplicitEulerStep(const Model& model, const AppliedWrench& input, double h, const State& y) {
-  const Motion motion = motionOf(model.mass, y);
+  const Motion motion = motionOf(model, y);
   const Wrench wrench = totalWrench(model, motion, input);
-  State next;
+  State next = y;
   next.P_W = y.P_W + h * wrench.force;
-  next.L_W = y.L_W + h * wrench.torque;
   next.p_WB = y.p_WB + (h * model.mass.inverseMass()) * next.P_W;
-  next.q_WB = quaternionExp(h * applyWorldInverseInertia(model.mass, motion.R_WB, next.L_W)) * y.q_WB;
   next.t = y.t + h;
+  if (!model.terms.rotation) return next;
+  next.L_W = y.L_W + h * wrench.torque;
+  next.q_WB = quaternionExp(h * applyWorldInverseInertia(model, motion.R_WB, next.L_W)) * y.q_WB;
   return normalised(next);
 }
 
@@ -195,14 +200,22 @@ State semiImplicitEulerStep(const Model& model, const AppliedWrench& input, doub
 // step, with Ḟ and τ̇ derived from the force models: d(R f_B)/dt = ω × R f_B, d(−c v)/dt = −c F/M,
 // d(−c_ω ω)/dt = −c_ω α. Exact for a constant force through the centre of mass.
 State bussStep(const Model& model, const AppliedWrench& input, double h, const State& y) {
-  const Motion motion = motionOf(model.mass, y);
+  const Motion motion = motionOf(model, y);
   const Wrench wrench = totalWrench(model, motion, input);
   const Eigen::Vector3d& w = motion.w_WB_W;
-  const Eigen::Vector3d alpha = applyWorldInverseInertia(model.mass, motion.R_WB, wrench.torque - w.cross(y.L_W));
+  const double half_h2 = 0.5 * h * h;
+  if (!model.terms.rotation) {  // no torque, no input: F = M g − c v, Ḟ = −c F/M
+    State next = y;
+    const Eigen::Vector3d force_rate = -(model.forces.linear_damping * model.mass.inverseMass()) * wrench.force;
+    next.p_WB = y.p_WB + h * motion.v_WB_W + (half_h2 * model.mass.inverseMass()) * wrench.force;
+    next.P_W = y.P_W + h * wrench.force + half_h2 * force_rate;
+    next.t = y.t + h;
+    return next;
+  }
+  const Eigen::Vector3d alpha = applyWorldInverseInertia(model, motion.R_WB, wrench.torque - w.cross(y.L_W));
   const Eigen::Vector3d force_rate = w.cross(motion.R_WB * input.body.force) -
                                      (model.forces.linear_damping * model.mass.inverseMass()) * wrench.force;
   const Eigen::Vector3d torque_rate = w.cross(motion.R_WB * input.body.torque) - model.forces.angular_damping * alpha;
-  const double half_h2 = 0.5 * h * h;
   State next;
   next.p_WB = y.p_WB + h * motion.v_WB_W + (half_h2 * model.mass.inverseMass()) * wrench.force;
   next.P_W = y.P_W + h * wrench.force + half_h2 * force_rate;
@@ -224,8 +237,9 @@ State bussStep(const Model& model, const AppliedWrench& input, double h, const S
 
 void dampingFlow(const Model& model, double t, State& s) {
   const ForceModel& forces = model.forces;
-  if (forces.linear_damping > 0.0) s.P_W *= std::exp(-forces.linear_damping * model.mass.inverseMass() * t);
-  if (forces.angular_damping > 0.0) {
+  if (model.terms.linear_damping) s.P_W *= std::exp(-forces.linear_damping * model.mass.inverseMass() * t);
+  // c_ω = 0 is the identity flow: skipped also in the general step (the rotation there would round L).
+  if (model.terms.angular_damping && forces.angular_damping > 0.0) {
     const Eigen::Matrix3d R_WP = s.q_WB.toRotationMatrix() * model.mass.principalAxes();
     const Eigen::Array3d decay = (-forces.angular_damping * t / model.mass.principalMoments().array()).exp();
     s.L_W = R_WP * (decay * (R_WP.transpose() * s.L_W).array()).matrix();
@@ -233,7 +247,8 @@ void dampingFlow(const Model& model, double t, State& s) {
 }
 
 void kick(const Model& model, const AppliedWrench& input, double t, State& s) {
-  const Wrench external = externalWrench(model, s.q_WB.toRotationMatrix(), input);
+  const Wrench external =
+      externalWrench(model, model.terms.input ? rotationMatrix(s.q_WB) : Eigen::Matrix3d::Identity(), input);
   s.P_W += t * external.force;
   s.L_W += t * external.torque;
 }
@@ -244,8 +259,10 @@ StepStatus strangSplitting(const Model& model, const AppliedWrench& input, doubl
   dampingFlow(model, 0.5 * h, s);
   kick(model, input, 0.5 * h, s);
   s.p_WB += (h * model.mass.inverseMass()) * s.P_W;
-  const StepStatus status = free_rotation(s);
-  if (status != StepStatus::kOk) return status;
+  if (model.terms.rotation) {
+    const StepStatus status = free_rotation(s);
+    if (status != StepStatus::kOk) return status;
+  }
   kick(model, input, 0.5 * h, s);
   dampingFlow(model, 0.5 * h, s);
   s.t += h;

@@ -10,6 +10,10 @@ namespace rigid_body {
 /// about v/|v|. Exact for v = 0 and free of NaN for tiny |v| (Taylor series of sin(θ/2)/θ below a guard).
 Eigen::Quaterniond quaternionExp(const Eigen::Vector3d& rotation_vector);
 
+/// R(q) of a possibly unnormalised quaternion, R(q/|q|): Eigen's formula scaled by 2/|q|² (no square root),
+/// for the stage states of Runge–Kutta methods, whose q drifts off the unit sphere within a step.
+Eigen::Matrix3d rotationMatrix(const Eigen::Quaterniond& q);
+
 /// The rotation vector of a unit quaternion (inverse of quaternionExp), angle in [0, π].
 Eigen::Vector3d quaternionLog(const Eigen::Quaterniond& q);
 

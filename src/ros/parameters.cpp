@@ -4,6 +4,8 @@
 #include <ros/package.h>
 #include <ros/param.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -26,12 +28,15 @@ constexpr double kMaxRate = 10000.0;
 // A hand-typed quaternion such as [0, 0, 0.7071, 0.7071] is accepted and normalised if |q| is this close to 1.
 constexpr double kQuaternionNormTolerance = 1e-3;
 
-const std::set<std::string> kTopLevelNames = {
-    "rate",    "dt",      "integrator", "world_frame",    "body_frame",      "mass",           "shape",
-    "size",    "inertia", "initial",    "gravity",        "linear_damping",  "angular_damping", "wrench_timeout",
-    "max_substeps", "publish_tf", "abs_tolerance", "rel_tolerance", "max_force", "max_torque", "max_energy_growth",
-    "mesh", "scale", "density", "inertia_method", "samples", "principal_axes", "mesh_frame",
-    "lockstep", "real_time_factor", "start_paused", "noise"};
+// The keys of one body (flat at the top level, or in each item of ~bodies) and the scene-wide keys.
+const std::set<std::string> kBodyNames = {
+    "name", "body_frame", "mass", "shape", "size", "inertia", "initial", "linear_damping", "angular_damping",
+    "mesh", "scale", "density", "inertia_method", "samples", "principal_axes", "mesh_frame", "wrench_input"};
+const std::set<std::string> kSceneNames = {
+    "rate", "dt", "integrator", "world_frame", "gravity", "bodies", "wrench_timeout", "max_substeps", "publish_tf",
+    "publish", "abs_tolerance", "rel_tolerance", "max_force", "max_torque", "max_energy_growth", "lockstep",
+    "real_time_factor", "start_paused", "noise"};
+const std::set<std::string> kPublishNames = {"tf", "odom", "state", "applied_wrench"};
 const std::set<std::string> kNoiseNames = {"position_stddev", "orientation_stddev", "linear_velocity_stddev",
                                            "angular_velocity_stddev", "seed", "delay"};
 const std::set<std::string> kInitialNames = {"position", "orientation", "linear_velocity", "angular_velocity"};
@@ -186,7 +191,7 @@ bool readBool(const XmlRpcValue& params, const std::string& name, bool fallback)
 }
 
 // shape: mesh. The body frame is the mesh's centre of mass, with the mesh's axes or its principal axes.
-rigid_body::MassProperties readMeshMassProperties(const XmlRpcValue& params, NodeConfig& config) {
+rigid_body::MassProperties readMeshMassProperties(const XmlRpcValue& params, BodyConfig& config) {
   const std::string uri = readString(params, "mesh", "", "must be a mesh file path or package:// URI (.stl, .obj)");
   if (uri.empty()) fail("mesh", find(params, "mesh") ? *find(params, "mesh") : XmlRpcValue(std::string()),
                         "must be set for shape mesh: a file path or package:// URI (.stl, .obj)");
@@ -228,7 +233,7 @@ rigid_body::MassProperties readMeshMassProperties(const XmlRpcValue& params, Nod
   }
 }
 
-rigid_body::MassProperties readMassProperties(const XmlRpcValue& params, NodeConfig& config) {
+rigid_body::MassProperties readMassProperties(const XmlRpcValue& params, BodyConfig& config) {
   const std::string shape_allowed = "must be one of: box, sphere, cylinder, mesh (or give ~inertia)";
   if (!find(params, "inertia") && readString(params, "shape", "box", shape_allowed) == "mesh") {
     config.shape = "mesh";
@@ -285,6 +290,109 @@ void collectUnknown(const XmlRpcValue& params, const std::string& prefix, const 
   }
 }
 
+// One body's keys in `params` (the top level in the flat form, an item of ~bodies otherwise); the scene's
+// gravity is already in config.gravity_W.
+BodyConfig parseBody(const XmlRpcValue& params, const NodeConfig& scene, const std::string& default_frame,
+                     std::vector<std::string>& unknown) {
+  BodyConfig body;
+  body.body_frame = readFrame(params, "body_frame", default_frame);
+  if (scene.world_frame == body.body_frame) {
+    const XmlRpcValue* body_frame = find(params, "body_frame");
+    fail("body_frame", body_frame ? *body_frame : XmlRpcValue(body.body_frame), "must differ from ~world_frame");
+  }
+  body.model.mass = readMassProperties(params, body);
+  body.model.forces.gravity_W = scene.gravity_W;
+  body.model.forces.linear_damping = readNumber(params, "linear_damping", 0.0, [](double c) { return c >= 0.0; },
+                                                "must be a finite number >= 0 [N s/m]");
+  body.model.forces.angular_damping = readNumber(params, "angular_damping", 0.0, [](double c) { return c >= 0.0; },
+                                                 "must be a finite number >= 0 [N m s/rad]");
+  body.wrench_input = readBool(params, "wrench_input", true);
+
+  const Eigen::Vector3d position = readVector3(params, "initial/position", "[m]");
+  const std::vector<double> q = readNumbers(params, "initial/orientation", {0.0, 0.0, 0.0, 1.0}, 4,
+                                            "must be a unit quaternion [x, y, z, w] of 4 finite numbers");
+  const Eigen::Quaterniond orientation(q[3], q[0], q[1], q[2]);
+  if (std::abs(orientation.norm() - 1.0) > kQuaternionNormTolerance) {
+    fail("initial/orientation", *find(params, "initial/orientation"),
+         "must be a unit quaternion [x, y, z, w]: |q| must be within 1e-3 of 1 (it is then normalised)");
+  }
+  body.initial_linear_velocity_W = readVector3(params, "initial/linear_velocity", "[m/s], world axes");
+  body.initial_angular_velocity_B = readVector3(params, "initial/angular_velocity", "[rad/s], body axes");
+  body.initial = rigid_body::stateFromVelocities(body.model.mass, position, orientation,
+                                                 body.initial_linear_velocity_W, body.initial_angular_velocity_B);
+  body.mesh_frame = readString(params, "mesh_frame", "", "must be a tf2 frame id");
+  if (!body.mesh_frame.empty()) {
+    if (body.shape != "mesh") fail("mesh_frame", *find(params, "mesh_frame"), "is only for shape mesh");
+    body.mesh_frame = readFrame(params, "mesh_frame", "");
+  }
+  if (const XmlRpcValue* initial = find(params, "initial")) collectUnknown(*initial, "initial/", kInitialNames, unknown);
+  return body;
+}
+
+// "parameter ~mass = ...: ..." of a body item becomes "parameter ~bodies[2]/mass = ...: ...".
+ParameterError inBodyItem(const ParameterError& error, int index) {
+  const std::string prefix = "parameter ~";
+  std::string message = error.what();
+  if (message.compare(0, prefix.size(), prefix) == 0) {
+    message.insert(prefix.size(), "bodies[" + std::to_string(index) + "]/");
+  }
+  return ParameterError(message);
+}
+
+// A body name is a relative ROS name of one segment: a letter, then letters, digits and underscores.
+bool isBodyName(const std::string& name) {
+  if (name.empty() || !std::isalpha(static_cast<unsigned char>(name.front()))) return false;
+  return std::all_of(name.begin(), name.end(),
+                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+}
+
+std::vector<BodyConfig> parseBodies(const XmlRpcValue& params, const NodeConfig& scene,
+                                    std::vector<std::string>& unknown) {
+  const XmlRpcValue* list = find(params, "bodies");
+  if (!list) {
+    std::vector<BodyConfig> bodies = {parseBody(params, scene, "base_link", unknown)};
+    if (find(params, "name")) fail("name", *find(params, "name"), "is a key of the items of ~bodies only");
+    return bodies;
+  }
+  const std::string allowed = "must be a non-empty list of bodies, each a struct with at least 'name'";
+  if (list->getType() != XmlRpcValue::TypeArray || list->size() == 0) fail("bodies", *list, allowed);
+  // The flat body keys and ~bodies are two ways of saying the same thing: one of them, not both.
+  XmlRpcValue top = params;
+  for (const auto& member : top) {
+    if (kBodyNames.count(member.first)) {
+      fail(member.first, member.second, "is a body key: with ~bodies, give it in each item of the list");
+    }
+  }
+  std::vector<BodyConfig> bodies;
+  std::set<std::string> names, frames;
+  for (int i = 0; i < list->size(); ++i) {
+    const XmlRpcValue& item = (*list)[i];
+    if (item.getType() != XmlRpcValue::TypeStruct) {
+      throw ParameterError("parameter ~bodies[" + std::to_string(i) + "] = " + render(item) +
+                           ": must be a struct with the keys of one body");
+    }
+    try {
+      const std::string name = readString(item, "name", "", "must be the body's name (letters, digits, '_')");
+      if (!isBodyName(name) || !names.insert(name).second) {
+        fail("name", find(item, "name") ? *find(item, "name") : XmlRpcValue(name),
+             "must be a unique name of letters, digits and '_' that starts with a letter");
+      }
+      BodyConfig body = parseBody(item, scene, name, unknown);
+      body.name = name;
+      if (!frames.insert(body.body_frame).second) {
+        fail("body_frame", XmlRpcValue(body.body_frame), "must differ from every other body's body_frame");
+      }
+      std::vector<std::string> item_unknown;
+      collectUnknown(item, "", kBodyNames, item_unknown);
+      for (const std::string& key : item_unknown) unknown.push_back("bodies[" + std::to_string(i) + "]/" + key);
+      bodies.push_back(body);
+    } catch (const ParameterError& error) {
+      throw inBodyItem(error, i);
+    }
+  }
+  return bodies;
+}
+
 }  // namespace
 
 NodeConfig parseConfig(const XmlRpcValue& params) {
@@ -312,31 +420,9 @@ NodeConfig parseConfig(const XmlRpcValue& params) {
       readNumber(params, "rel_tolerance", config.integrator_settings.rel_tolerance, tolerance,
                  "must be a finite number in [1e-15, 1] (dopri5's relative error per step)");
   config.world_frame = readFrame(params, "world_frame", config.world_frame);
-  config.body_frame = readFrame(params, "body_frame", config.body_frame);
-  if (config.world_frame == config.body_frame) {
-    const XmlRpcValue* body_frame = find(params, "body_frame");
-    fail("body_frame", body_frame ? *body_frame : XmlRpcValue(config.body_frame), "must differ from ~world_frame");
-  }
-
-  config.model.mass = readMassProperties(params, config);
-  config.model.forces.gravity_W = readVector3(params, "gravity", "[m/s^2]");
-  config.model.forces.linear_damping = readNumber(params, "linear_damping", 0.0, [](double c) { return c >= 0.0; },
-                                                  "must be a finite number >= 0 [N s/m]");
-  config.model.forces.angular_damping = readNumber(params, "angular_damping", 0.0, [](double c) { return c >= 0.0; },
-                                                   "must be a finite number >= 0 [N m s/rad]");
-
-  const Eigen::Vector3d position = readVector3(params, "initial/position", "[m]");
-  const std::vector<double> q = readNumbers(params, "initial/orientation", {0.0, 0.0, 0.0, 1.0}, 4,
-                                            "must be a unit quaternion [x, y, z, w] of 4 finite numbers");
-  const Eigen::Quaterniond orientation(q[3], q[0], q[1], q[2]);
-  if (std::abs(orientation.norm() - 1.0) > kQuaternionNormTolerance) {
-    fail("initial/orientation", *find(params, "initial/orientation"),
-         "must be a unit quaternion [x, y, z, w]: |q| must be within 1e-3 of 1 (it is then normalised)");
-  }
-  config.initial_linear_velocity_W = readVector3(params, "initial/linear_velocity", "[m/s], world axes");
-  config.initial_angular_velocity_B = readVector3(params, "initial/angular_velocity", "[rad/s], body axes");
-  config.initial = rigid_body::stateFromVelocities(config.model.mass, position, orientation,
-                                                   config.initial_linear_velocity_W, config.initial_angular_velocity_B);
+  config.gravity_W = readVector3(params, "gravity", "[m/s^2]");
+  std::vector<std::string> unknown_in_bodies;  // reported after the top-level names
+  config.bodies = parseBodies(params, config, unknown_in_bodies);
 
   config.wrench_timeout = readNumber(params, "wrench_timeout", 0.0, [](double t) { return t >= 0.0; },
                                      "must be a finite number >= 0 [s] (0: hold until the next wrench)");
@@ -352,12 +438,11 @@ NodeConfig parseConfig(const XmlRpcValue& params) {
                                         "must be a finite number > 1 (energy factor per tick)");
   config.max_substeps = readInteger(params, "max_substeps", static_cast<int>(config.max_substeps), 1,
                                     "must be an integer >= 1");
-  config.publish_tf = readBool(params, "publish_tf", true);
-  config.mesh_frame = readString(params, "mesh_frame", "", "must be a tf2 frame id");
-  if (!config.mesh_frame.empty()) {
-    if (config.shape != "mesh") fail("mesh_frame", *find(params, "mesh_frame"), "is only for shape mesh");
-    config.mesh_frame = readFrame(params, "mesh_frame", "");
-  }
+  // publish_tf is the older spelling of publish/tf; publish/tf wins when both are set.
+  config.publish.tf = readBool(params, "publish/tf", readBool(params, "publish_tf", true));
+  config.publish.odom = readBool(params, "publish/odom", true);
+  config.publish.state = readBool(params, "publish/state", true);
+  config.publish.applied_wrench = readBool(params, "publish/applied_wrench", true);
   config.lockstep = readBool(params, "lockstep", false);
   config.real_time_factor = readNumber(params, "real_time_factor", 1.0, [](double f) { return f >= 0.0; },
                                        "must be a finite number >= 0 (0: as fast as possible)");
@@ -374,11 +459,15 @@ NodeConfig parseConfig(const XmlRpcValue& params) {
   config.noise.delay = readNumber(params, "noise/delay", 0.0, [](double d) { return d >= 0.0; }, "must be a finite number >= 0 [s]");
   config.noise.seed = readInteger(params, "noise/seed", config.noise.seed, std::numeric_limits<int>::min(),
                                   "must be an integer");
-  collectUnknown(params, "", kTopLevelNames, config.unknown_parameters);
+  std::set<std::string> top_level = kSceneNames;
+  if (!find(params, "bodies")) top_level.insert(kBodyNames.begin(), kBodyNames.end());
+  collectUnknown(params, "", top_level, config.unknown_parameters);
   if (const XmlRpcValue* noise = find(params, "noise")) collectUnknown(*noise, "noise/", kNoiseNames, config.unknown_parameters);
-  if (const XmlRpcValue* initial = find(params, "initial")) {
-    collectUnknown(*initial, "initial/", kInitialNames, config.unknown_parameters);
+  if (const XmlRpcValue* publish = find(params, "publish")) {
+    collectUnknown(*publish, "publish/", kPublishNames, config.unknown_parameters);
   }
+  config.unknown_parameters.insert(config.unknown_parameters.end(), unknown_in_bodies.begin(),
+                                   unknown_in_bodies.end());
   return config;
 }
 
@@ -402,19 +491,26 @@ NodeConfig loadConfig(const ros::NodeHandle& private_nh) {
 
 std::string NodeConfig::describe() const {
   std::ostringstream out;
-  const Eigen::Vector3d& I = model.mass.principalMoments();
   out << "rate " << rate << " Hz, dt " << dt << " s, integrator " << rigid_body::integratorName(integrator);
   if (integrator == rigid_body::IntegratorType::kDopri5) {
     out << " (abs_tolerance " << integrator_settings.abs_tolerance << ", rel_tolerance "
         << integrator_settings.rel_tolerance << ")";
   }
-  out
-      << ", frames " << world_frame << " -> " << body_frame << ", mass " << model.mass.mass() << " kg, shape "
-      << shape << (mesh_path.empty() ? "" : " '" + mesh_path + "'") << ", principal moments [" << I.x() << ", " << I.y() << ", " << I.z() << "] kg m^2, gravity ["
-      << model.forces.gravity_W.transpose() << "] m/s^2, damping " << model.forces.linear_damping << " N s/m, "
-      << model.forces.angular_damping << " N m s/rad, wrench_timeout " << wrench_timeout << " s, max_substeps "
+  out << ", world frame " << world_frame << ", gravity [" << gravity_W.transpose() << "] m/s^2, " << bodies.size()
+      << (bodies.size() == 1 ? " body" : " bodies") << ", wrench_timeout " << wrench_timeout << " s, max_substeps "
       << max_substeps << ", max_force " << wrench_limits.max_force << " N, max_torque " << wrench_limits.max_torque
-      << " N m, max_energy_growth " << max_energy_growth << ", publish_tf " << (publish_tf ? "true" : "false");
+      << " N m, max_energy_growth " << max_energy_growth << ", publish tf " << (publish.tf ? "true" : "false")
+      << " odom " << (publish.odom ? "true" : "false") << " state " << (publish.state ? "true" : "false")
+      << " applied_wrench " << (publish.applied_wrench ? "true" : "false");
+  for (const BodyConfig& body : bodies) {
+    const Eigen::Vector3d& I = body.model.mass.principalMoments();
+    out << "\n  body '" << (body.name.empty() ? "(flat)" : body.name) << "': frame " << body.body_frame << ", mass "
+        << body.model.mass.mass() << " kg, shape " << body.shape
+        << (body.mesh_path.empty() ? "" : " '" + body.mesh_path + "'") << ", principal moments [" << I.x() << ", "
+        << I.y() << ", " << I.z() << "] kg m^2, damping " << body.model.forces.linear_damping << " N s/m, "
+        << body.model.forces.angular_damping << " N m s/rad, wrench input "
+        << (body.wrench_input ? "true" : "false");
+  }
   return out.str();
 }
 

@@ -28,11 +28,18 @@ rigid_body::AppliedWrench& operator+=(rigid_body::AppliedWrench& sum, const rigi
   sum.body += add.body;
   return sum;
 }
+
+std::vector<rigid_body::BodyDefinition> bodyDefinitions(const NodeConfig& config) {
+  std::vector<rigid_body::BodyDefinition> bodies;
+  for (const BodyConfig& body : config.bodies) bodies.push_back({body.model, body.initial, body.wrench_input});
+  return bodies;
+}
+
 }  // namespace
 
 SimulatorNode::SimulatorNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const NodeConfig& config)
     : config_(config),
-      simulation_(config.model, config.initial, config.integrator, config.dt, config.max_substeps,
+      simulation_(bodyDefinitions(config), config.integrator, config.dt, config.max_substeps,
                   config.integrator_settings),
       nh_(nh),
       tf_listener_(tf_buffer_),
@@ -45,41 +52,62 @@ SimulatorNode::SimulatorNode(const ros::NodeHandle& nh, const ros::NodeHandle& p
   // In lockstep at full speed the outputs come in bursts: a deeper queue lets subscribers keep up longer
   // (a subscriber slower than the simulation still misses messages; set real_time_factor then).
   const uint32_t queue = config_.lockstep ? 100 : 10;
-  odom_publisher_ = nh_.advertise<nav_msgs::Odometry>("odom", queue);
-  state_publisher_ = nh_.advertise<rigid_body_sim::RigidBodyState>("state", queue);
-  wrench_subscriber_ = nh_.subscribe("wrench", 10, &SimulatorNode::onWrench, this);
+  bodies_.resize(config_.bodies.size());
+  for (std::size_t body = 0; body < bodies_.size(); ++body) createBodyChannel(body, queue);
   reset_service_ = nh_.advertiseService("reset", &SimulatorNode::onReset, this);
-  wrench_unstamped_subscriber_ = nh_.subscribe("wrench_unstamped", 10, &SimulatorNode::onWrenchUnstamped, this);
-  applied_wrench_publisher_ = nh_.advertise<geometry_msgs::WrenchStamped>("applied_wrench", queue);
   control_services_ = {
       nh_.advertiseService("reset_time", &SimulatorNode::onResetTime, this),
       nh_.advertiseService("pause", &SimulatorNode::onPause, this),
       nh_.advertiseService("unpause", &SimulatorNode::onUnpause, this),
       nh_.advertiseService("step", &SimulatorNode::onStep, this),
-      nh_.advertiseService("apply_wrench", &SimulatorNode::onApplyWrench, this),
       nh_.advertiseService("clear_wrenches", &SimulatorNode::onClearWrenches, this),
-      nh_.advertiseService("set_state", &SimulatorNode::onSetState, this),
-      nh_.advertiseService("get_state", &SimulatorNode::onGetState, this),
   };
   if (config_.lockstep) clock_publisher_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
-  if (config_.noise.enabled()) {
-    odom_noisy_publisher_ = nh_.advertise<nav_msgs::Odometry>("odom_noisy", queue);
-    noise_generator_.seed(static_cast<std::uint64_t>(config_.noise.seed));
-  }
   simulation_.setPaused(config_.start_paused);
-  applied_wrench_message_.header.frame_id = config_.world_frame;
 
   diagnostics_.setHardwareID(ros::this_node::getName());
   diagnostics_.add(publish_frequency_);
-  diagnostics_.add("rigid body " + config_.body_frame, this, &SimulatorNode::diagnose);
+  diagnostics_.add(bodies_.size() == 1 ? "rigid body " + config_.bodies[0].body_frame
+                                       : "rigid body scene (" + std::to_string(bodies_.size()) + " bodies)",
+                   this, &SimulatorNode::diagnose);
+}
 
+void SimulatorNode::createBodyChannel(std::size_t body, uint32_t queue) {
+  BodyChannel& channel = bodies_[body];
+  const BodyConfig& config = config_.bodies[body];
+  channel.config = &config;
   // Ground truth: the covariances stay zero.
-  odom_message_.header.frame_id = config_.world_frame;
-  odom_message_.child_frame_id = config_.body_frame;
-  transform_message_.header.frame_id = config_.world_frame;
-  transform_message_.child_frame_id = config_.body_frame;
-  state_message_.header.frame_id = config_.world_frame;
-  state_message_.child_frame_id = config_.body_frame;
+  channel.odom_message.header.frame_id = config_.world_frame;
+  channel.odom_message.child_frame_id = config.body_frame;
+  channel.state_message.header.frame_id = config_.world_frame;
+  channel.state_message.child_frame_id = config.body_frame;
+  channel.applied_wrench_message.header.frame_id = config_.world_frame;
+  if (config_.publish.odom) channel.odom_publisher = nh_.advertise<nav_msgs::Odometry>(config.topic("odom"), queue);
+  if (config_.publish.state) {
+    channel.state_publisher = nh_.advertise<rigid_body_sim::RigidBodyState>(config.topic("state"), queue);
+  }
+  if (config_.publish.applied_wrench) {
+    channel.applied_wrench_publisher =
+        nh_.advertise<geometry_msgs::WrenchStamped>(config.topic("applied_wrench"), queue);
+  }
+  if (config_.noise.enabled()) {
+    channel.odom_noisy_publisher = nh_.advertise<nav_msgs::Odometry>(config.topic("odom_noisy"), queue);
+    channel.noise_generator.seed(static_cast<std::uint64_t>(config_.noise.seed) + body);  // one stream per body
+  }
+  channel.services.push_back(nh_.advertiseService<rigid_body_sim::GetState::Request, rigid_body_sim::GetState::Response>(
+      config.topic("get_state"), [this, body](auto& request, auto& response) { return onGetState(body, request, response); }));
+  channel.services.push_back(nh_.advertiseService<rigid_body_sim::SetState::Request, rigid_body_sim::SetState::Response>(
+      config.topic("set_state"), [this, body](auto& request, auto& response) { return onSetState(body, request, response); }));
+  if (!config.wrench_input) return;  // no input term: no subscriber, no apply_wrench
+  channel.wrench_subscribers.push_back(nh_.subscribe<geometry_msgs::WrenchStamped>(
+      config.topic("wrench"), 10, [this, body](const geometry_msgs::WrenchStamped::ConstPtr& m) { onWrench(body, m); }));
+  channel.wrench_subscribers.push_back(nh_.subscribe<geometry_msgs::Wrench>(
+      config.topic("wrench_unstamped"), 10,
+      [this, body](const geometry_msgs::Wrench::ConstPtr& m) { onWrenchUnstamped(body, m); }));
+  channel.services.push_back(
+      nh_.advertiseService<rigid_body_sim::ApplyWrench::Request, rigid_body_sim::ApplyWrench::Response>(
+          config.topic("apply_wrench"),
+          [this, body](auto& request, auto& response) { return onApplyWrench(body, request, response); }));
 }
 
 void SimulatorNode::start(const ros::Time& start_time) {
@@ -94,23 +122,37 @@ void SimulatorNode::start(const ros::Time& start_time) {
     });
   }
   ROS_INFO("rigid_body_node: %s", config_.describe().c_str());
-  if (!config_.mesh_path.empty()) {
-    const Eigen::Vector3d& c = config_.X_MB.translation();
-    const Eigen::Quaterniond q_MB(config_.X_MB.linear());
+  std::vector<geometry_msgs::TransformStamped> mesh_frames;
+  for (std::size_t body = 0; body < bodies_.size(); ++body) {
+    const BodyConfig& config = config_.bodies[body];
+    // Once, at start-up: what this body's step evaluates (the rest of Ẏ is left out: see StepTerms).
+    ROS_INFO("rigid_body_node: body %s (%s): step assembled from %s", config.name.empty() ? "(flat)" : config.name.c_str(),
+             config.body_frame.c_str(), rigid_body::describeTerms(simulation_.terms(body)).c_str());
+    if (config_.publish.tf) {
+      geometry_msgs::TransformStamped transform;
+      transform.header.frame_id = config_.world_frame;
+      transform.child_frame_id = config.body_frame;
+      transforms_.push_back(transform);
+    }
+    if (config.mesh_path.empty()) continue;
+    const Eigen::Vector3d& c = config.X_MB.translation();
+    const Eigen::Quaterniond q_MB(config.X_MB.linear());
     ROS_INFO("rigid_body_node: body frame %s = mesh frame moved to the centre of mass (%g, %g, %g) m and turned by "
              "q = [%g, %g, %g, %g] (x, y, z, w)%s",
-             config_.body_frame.c_str(), c.x(), c.y(), c.z(), q_MB.x(), q_MB.y(), q_MB.z(), q_MB.w(),
-             config_.mesh_frame.empty() ? "" : ("; published as tf " + config_.body_frame + " -> " + config_.mesh_frame).c_str());
-    for (const std::string& warning : config_.mesh_warnings) ROS_WARN("rigid_body_node: %s", warning.c_str());
-  }
-  if (!config_.mesh_frame.empty()) {
+             config.body_frame.c_str(), c.x(), c.y(), c.z(), q_MB.x(), q_MB.y(), q_MB.z(), q_MB.w(),
+             config.mesh_frame.empty() ? "" : ("; published as tf " + config.body_frame + " -> " + config.mesh_frame).c_str());
+    for (const std::string& warning : config.mesh_warnings) ROS_WARN("rigid_body_node: %s", warning.c_str());
+    if (config.mesh_frame.empty()) continue;
     // The mesh's own frame relative to the body frame, X_BM = X_MB⁻¹, so visuals can hang on it.
-    mesh_frame_broadcaster_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
-    geometry_msgs::TransformStamped X_BM = tf2::eigenToTransform(Eigen::Affine3d(config_.X_MB.inverse().matrix()));
+    geometry_msgs::TransformStamped X_BM = tf2::eigenToTransform(Eigen::Affine3d(config.X_MB.inverse().matrix()));
     X_BM.header.stamp = start_time;
-    X_BM.header.frame_id = config_.body_frame;
-    X_BM.child_frame_id = config_.mesh_frame;
-    mesh_frame_broadcaster_->sendTransform(X_BM);
+    X_BM.header.frame_id = config.body_frame;
+    X_BM.child_frame_id = config.mesh_frame;
+    mesh_frames.push_back(X_BM);
+  }
+  if (!mesh_frames.empty()) {
+    mesh_frame_broadcaster_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
+    mesh_frame_broadcaster_->sendTransform(mesh_frames);
   }
 }
 
@@ -149,9 +191,11 @@ void SimulatorNode::advanceToStep(std::int64_t target) {
   while (simulation_.clockSteps() < target) {
     const std::int64_t k = simulation_.clockSteps();
     std::int64_t next = target;  // the next step at which a service wrench starts or ends
-    for (const TimedWrench& timed : timed_wrenches_) {
-      if (timed.start > k) next = std::min(next, timed.start);
-      if (timed.end > k) next = std::min(next, timed.end);
+    for (const BodyChannel& channel : bodies_) {
+      for (const TimedWrench& timed : channel.timed_wrenches) {
+        if (timed.start > k) next = std::min(next, timed.start);
+        if (timed.end > k) next = std::min(next, timed.end);
+      }
     }
     refreshInput();
     const rigid_body::AdvanceResult result = simulation_.advanceToStep(next);
@@ -164,22 +208,35 @@ void SimulatorNode::advanceToStep(std::int64_t target) {
                         static_cast<long>(result.dropped));
     }
     if (result.diverged) {
-      ROS_ERROR("rigid_body_node: the simulation diverged (%s); publishing the last good state until ~reset",
-                rigid_body::divergenceName(simulation_.divergence()));
+      for (std::size_t body = 0; body < bodies_.size(); ++body) {
+        if (simulation_.divergence(body) == rigid_body::Divergence::kNone) continue;
+        ROS_ERROR_THROTTLE(kWarningPeriod,
+                           "rigid_body_node: body %s diverged (%s); publishing its last good state until ~reset",
+                           config_.bodies[body].body_frame.c_str(),
+                           rigid_body::divergenceName(simulation_.divergence(body)));
+      }
     }
   }
   const std::int64_t k = simulation_.clockSteps();
-  timed_wrenches_.erase(std::remove_if(timed_wrenches_.begin(), timed_wrenches_.end(),
-                                       [k](const TimedWrench& timed) { return timed.end >= 0 && timed.end <= k; }),
-                        timed_wrenches_.end());
+  for (BodyChannel& channel : bodies_) {
+    std::vector<TimedWrench>& timed = channel.timed_wrenches;
+    timed.erase(std::remove_if(timed.begin(), timed.end(),
+                               [k](const TimedWrench& t) { return t.end >= 0 && t.end <= k; }),
+                timed.end());
+  }
   refreshInput();
 }
 
-void SimulatorNode::refreshInput() { simulation_.setInput(inputAtStep(simulation_.clockSteps())); }
+void SimulatorNode::refreshInput() {
+  const std::int64_t k = simulation_.clockSteps();
+  for (std::size_t body = 0; body < bodies_.size(); ++body) {
+    if (config_.bodies[body].wrench_input) simulation_.setInput(body, inputAtStep(bodies_[body], k));
+  }
+}
 
-rigid_body::AppliedWrench SimulatorNode::inputAtStep(std::int64_t k) const {
-  rigid_body::AppliedWrench input = topic_input_;
-  for (const TimedWrench& timed : timed_wrenches_) {
+rigid_body::AppliedWrench SimulatorNode::inputAtStep(const BodyChannel& channel, std::int64_t k) const {
+  rigid_body::AppliedWrench input = channel.topic_input;
+  for (const TimedWrench& timed : channel.timed_wrenches) {
     if (timed.start <= k && (timed.end < 0 || k < timed.end)) input += timed.wrench;
   }
   return input;
@@ -189,22 +246,32 @@ ros::Time SimulatorNode::now() const {
   return config_.lockstep ? stampOf(simulation_.clockSteps()) : ros::Time::now();
 }
 
-void SimulatorNode::expireWrench(const ros::Time& now) {
-  if (!wrench_active_ || config_.wrench_timeout <= 0.0) return;
-  const ros::Time expiry = last_wrench_time_ + ros::Duration(config_.wrench_timeout);
-  if (now < expiry) return;
-  advanceTo(expiry);  // the wrench acts up to its expiry, not up to this tick
-  topic_input_ = rigid_body::AppliedWrench();
-  refreshInput();
-  wrench_active_ = false;
-  wrench_timed_out_ = true;
-  ++counters_.wrench_timeouts;
-  ROS_INFO("rigid_body_node: no wrench for %.3f s (wrench_timeout): applied wrench set to zero",
-           config_.wrench_timeout);
+void SimulatorNode::expireWrenches(const ros::Time& now) {
+  if (config_.wrench_timeout <= 0.0) return;
+  const ros::Duration timeout(config_.wrench_timeout);
+  // In the order of expiry, so that each wrench acts exactly up to its own.
+  for (;;) {
+    BodyChannel* first = nullptr;
+    for (BodyChannel& channel : bodies_) {
+      if (channel.wrench_active && channel.last_wrench_time + timeout <= now &&
+          (!first || channel.last_wrench_time < first->last_wrench_time)) {
+        first = &channel;
+      }
+    }
+    if (!first) return;
+    advanceTo(first->last_wrench_time + timeout);  // the wrench acts up to its expiry, not up to this tick
+    first->topic_input = rigid_body::AppliedWrench();
+    refreshInput();
+    first->wrench_active = false;
+    first->wrench_timed_out = true;
+    ++counters_.wrench_timeouts;
+    ROS_INFO("rigid_body_node: %s: no wrench for %.3f s (wrench_timeout): applied wrench set to zero",
+             first->config->body_frame.c_str(), config_.wrench_timeout);
+  }
 }
 
 void SimulatorNode::update(const ros::Time& now) {
-  expireWrench(now);
+  expireWrenches(now);
   advanceTo(now);
   if (simulation_.clockSteps() > published_clock_steps_) publish();
   diagnostics_.update();  // rate-limited by diagnostic_updater itself (~diagnostic_period, 1 s)
@@ -213,35 +280,44 @@ void SimulatorNode::update(const ros::Time& now) {
 void SimulatorNode::publish() {
   published_clock_steps_ = simulation_.clockSteps();
   const ros::Time stamp = stampOf(published_clock_steps_);
-  const rigid_body::State& state = simulation_.state();
-  max_norm_error_ = std::max(max_norm_error_, std::abs(rigid_body::quaternionNormError(state)));
-  if (config_.publish_tf) {
-    transform_message_.header.stamp = stamp;
-    fillTransform(state, transform_message_);
-    tf_broadcaster_.sendTransform(transform_message_);
+  for (std::size_t body = 0; body < bodies_.size(); ++body) {
+    BodyChannel& channel = bodies_[body];
+    const rigid_body::State& state = simulation_.state(body);
+    channel.max_norm_error = std::max(channel.max_norm_error, std::abs(rigid_body::quaternionNormError(state)));
+    if (config_.publish.tf) {
+      transforms_[body].header.stamp = stamp;
+      fillTransform(state, transforms_[body]);
+    }
+    if (config_.publish.odom || config_.noise.enabled()) {
+      channel.odom_message.header.stamp = stamp;
+      fillOdometry(simulation_.model(body).mass, state, channel.odom_message);
+      if (config_.publish.odom) channel.odom_publisher.publish(channel.odom_message);
+    }
+    if (config_.publish.state || config_.publish.applied_wrench) {
+      channel.state_message.header.stamp = stamp;
+      fillStateMessage(simulation_.model(body), state, simulation_.input(body), channel.state_message);
+      if (config_.publish.state) channel.state_publisher.publish(channel.state_message);
+    }
+    if (config_.publish.applied_wrench) {
+      channel.applied_wrench_message.header.stamp = stamp;
+      channel.applied_wrench_message.wrench = channel.state_message.applied_wrench;  // world axes, about the CoM
+      channel.applied_wrench_publisher.publish(channel.applied_wrench_message);
+    }
+    publishNoisy(channel, stamp);
   }
-  odom_message_.header.stamp = stamp;
-  fillOdometry(simulation_.model().mass, state, odom_message_);
-  odom_publisher_.publish(odom_message_);
-  state_message_.header.stamp = stamp;
-  fillStateMessage(simulation_.model(), state, simulation_.input(), state_message_);
-  state_publisher_.publish(state_message_);
-  applied_wrench_message_.header.stamp = stamp;
-  applied_wrench_message_.wrench = state_message_.applied_wrench;  // world axes about the centre of mass
-  applied_wrench_publisher_.publish(applied_wrench_message_);
-  publishNoisy(stamp);
+  if (config_.publish.tf) tf_broadcaster_.sendTransform(transforms_);  // every body in one tf message
   publish_frequency_.tick();
 }
 
-void SimulatorNode::publishNoisy(const ros::Time& stamp) {
+void SimulatorNode::publishNoisy(BodyChannel& channel, const ros::Time& stamp) {
   if (!config_.noise.enabled()) return;
   const NoiseConfig& noise = config_.noise;
   std::normal_distribution<double> normal(0.0, 1.0);
   const auto draw = [&](const Eigen::Vector3d& stddev) {
-    return Eigen::Vector3d(stddev.x() * normal(noise_generator_), stddev.y() * normal(noise_generator_),
-                           stddev.z() * normal(noise_generator_));
+    return Eigen::Vector3d(stddev.x() * normal(channel.noise_generator), stddev.y() * normal(channel.noise_generator),
+                           stddev.z() * normal(channel.noise_generator));
   };
-  nav_msgs::Odometry noisy = odom_message_;
+  nav_msgs::Odometry noisy = channel.odom_message;
   Eigen::Vector3d p, v, w;
   Eigen::Quaterniond q;
   tf2::fromMsg(noisy.pose.pose.position, p);
@@ -259,12 +335,14 @@ void SimulatorNode::publishNoisy(const ros::Time& stamp) {
     noisy.twist.covariance[7 * i] = noise.linear_velocity_stddev(i) * noise.linear_velocity_stddev(i);
     noisy.twist.covariance[7 * (i + 3)] = noise.angular_velocity_stddev(i) * noise.angular_velocity_stddev(i);
   }
-  delayed_noisy_.push_back(noisy);
-  while (!delayed_noisy_.empty() && delayed_noisy_.front().header.stamp + ros::Duration(noise.delay) <= stamp) {
-    odom_noisy_publisher_.publish(delayed_noisy_.front());
-    delayed_noisy_.pop_front();
+  channel.delayed_noisy.push_back(noisy);
+  while (!channel.delayed_noisy.empty() &&
+         channel.delayed_noisy.front().header.stamp + ros::Duration(noise.delay) <= stamp) {
+    channel.odom_noisy_publisher.publish(channel.delayed_noisy.front());
+    channel.delayed_noisy.pop_front();
   }
 }
+
 
 void SimulatorNode::publishClock() {
   rosgraph_msgs::Clock clock;
@@ -285,7 +363,7 @@ void SimulatorNode::runLockstep() {
       pace_steps = simulation_.clockSteps();
       continue;
     }
-    expireWrench(now());
+    expireWrenches(now());
     advanceToStep(simulation_.clockSteps() + 1);
     if (simulation_.clockSteps() % steps_per_publish == 0) {
       publishClock();
@@ -326,11 +404,12 @@ bool SimulatorNode::acceptWrench(const geometry_msgs::Wrench& wrench) {
   return false;
 }
 
-bool SimulatorNode::toAppliedWrench(const geometry_msgs::Wrench& wrench, const std::string& frame,
+bool SimulatorNode::toAppliedWrench(std::size_t body, const geometry_msgs::Wrench& wrench, const std::string& frame,
                                     const ros::Time& stamp, const Eigen::Vector3d* point,
                                     rigid_body::AppliedWrench& out) {
   rigid_body::Wrench given = toWrench(wrench);
-  switch (classifyWrenchFrame(frame, config_.world_frame, config_.body_frame)) {
+  const Eigen::Vector3d& p_WB = simulation_.state(body).p_WB;
+  switch (classifyWrenchFrame(frame, config_.world_frame, config_.bodies[body].body_frame)) {
     case WrenchFrame::kBody:
       // Body axes about the centre of mass (the body frame's origin): turns with the body.
       if (point) given.torque += point->cross(given.force);
@@ -338,7 +417,7 @@ bool SimulatorNode::toAppliedWrench(const geometry_msgs::Wrench& wrench, const s
       return true;
     case WrenchFrame::kWorld:
       // About the centre of mass unless a point is given (world axes: the transform is the identity).
-      out.world = point ? wrenchInWorld(wrench, Eigen::Isometry3d::Identity(), simulation_.state().p_WB, point) : given;
+      out.world = point ? wrenchInWorld(wrench, Eigen::Isometry3d::Identity(), p_WB, point) : given;
       return true;
     case WrenchFrame::kOther:
       break;
@@ -356,50 +435,53 @@ bool SimulatorNode::toAppliedWrench(const geometry_msgs::Wrench& wrench, const s
     ROS_WARN_THROTTLE(kWarningPeriod, "rigid_body_node: rejected a wrench in frame '%s': %s", frame.c_str(), error.what());
     return false;
   }
-  out.world = wrenchInWorld(wrench, tf2::transformToEigen(X_WF), simulation_.state().p_WB, point);
+  out.world = wrenchInWorld(wrench, tf2::transformToEigen(X_WF), p_WB, point);
   return true;
 }
 
-void SimulatorNode::setTopicWrench(const rigid_body::AppliedWrench& input, const ros::Time& now) {
-  topic_input_ = input;
+void SimulatorNode::setTopicWrench(std::size_t body, const rigid_body::AppliedWrench& input, const ros::Time& now) {
+  BodyChannel& channel = bodies_[body];
+  channel.topic_input = input;
   refreshInput();
   ++counters_.wrenches_applied;
-  wrench_active_ = true;
-  wrench_timed_out_ = false;
-  last_wrench_time_ = now;
+  channel.wrench_active = true;
+  channel.wrench_timed_out = false;
+  channel.last_wrench_time = last_wrench_time_ = now;
 }
 
-void SimulatorNode::onWrench(const geometry_msgs::WrenchStamped::ConstPtr& message) {
+void SimulatorNode::onWrench(std::size_t body, const geometry_msgs::WrenchStamped::ConstPtr& message) {
   if (!acceptWrench(message->wrench)) return;
   // The wrench acts from its arrival; its stamp only chooses the transform of a foreign frame (a stamp far
   // in the past or the future, as `rostopic pub` gives under sim time, neither delays nor drops it).
   const ros::Time arrival = now();
   advanceTo(arrival);  // integrate up to the arrival first: the new wrench acts from the step at its arrival
   rigid_body::AppliedWrench input;
-  if (!toAppliedWrench(message->wrench, message->header.frame_id, message->header.stamp, nullptr, input)) return;
-  setTopicWrench(input, arrival);
+  if (!toAppliedWrench(body, message->wrench, message->header.frame_id, message->header.stamp, nullptr, input)) return;
+  setTopicWrench(body, input, arrival);
 }
 
-void SimulatorNode::onWrenchUnstamped(const geometry_msgs::Wrench::ConstPtr& message) {
+void SimulatorNode::onWrenchUnstamped(std::size_t body, const geometry_msgs::Wrench::ConstPtr& message) {
   if (!acceptWrench(*message)) return;
   const ros::Time arrival = now();
   advanceTo(arrival);
   rigid_body::AppliedWrench input;
   input.world = toWrench(*message);
-  setTopicWrench(input, arrival);
+  setTopicWrench(body, input, arrival);
 }
 
-void SimulatorNode::resetBody() {
+void SimulatorNode::resetBodies() {
   simulation_.reset();
-  topic_input_ = rigid_body::AppliedWrench();
-  timed_wrenches_.clear();
-  wrench_active_ = false;
-  max_norm_error_ = 0.0;
+  for (BodyChannel& channel : bodies_) {
+    channel.topic_input = rigid_body::AppliedWrench();
+    channel.timed_wrenches.clear();
+    channel.wrench_active = false;
+    channel.max_norm_error = 0.0;
+  }
 }
 
 bool SimulatorNode::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   advanceTo(now());
-  resetBody();
+  resetBodies();
   ROS_INFO("rigid_body_node: reset to the initial state, wrenches cleared");
   return true;
 }
@@ -410,7 +492,7 @@ bool SimulatorNode::onResetTime(std_srvs::Trigger::Request&, std_srvs::Trigger::
     response.message = "reset_time rewinds simulated time, which only a lockstep node owns; use reset";
     return true;
   }
-  resetBody();
+  resetBodies();
   simulation_.rewindClock();
   anchor_time_ = start_time_;
   anchor_clock_steps_ = 0;
@@ -454,14 +536,14 @@ bool SimulatorNode::onStep(rigid_body_sim::Step::Request& request, rigid_body_si
     refreshInput();
     simulation_.stepNow(request.steps);
   }
-  response.success = simulation_.divergence() == rigid_body::Divergence::kNone;
-  response.message = response.success ? "" : rigid_body::divergenceName(simulation_.divergence());
+  response.success = !simulation_.anyDiverged();
+  response.message = response.success ? "" : "a body diverged (see diagnostics)";
   response.sim_time = stampOf(simulation_.clockSteps()).toSec();
   response.total_steps = simulation_.integratedSteps();
   return true;
 }
 
-bool SimulatorNode::onApplyWrench(rigid_body_sim::ApplyWrench::Request& request,
+bool SimulatorNode::onApplyWrench(std::size_t body, rigid_body_sim::ApplyWrench::Request& request,
                                   rigid_body_sim::ApplyWrench::Response& response) {
   if (!acceptWrench(request.wrench)) {
     response.success = false;
@@ -474,8 +556,8 @@ bool SimulatorNode::onApplyWrench(rigid_body_sim::ApplyWrench::Request& request,
   tf2::fromMsg(request.point, point);
   TimedWrench timed;
   if (!point.allFinite() ||
-      !toAppliedWrench(request.wrench, request.frame_id, request.start_time, request.use_point ? &point : nullptr,
-                       timed.wrench)) {
+      !toAppliedWrench(body, request.wrench, request.frame_id, request.start_time,
+                       request.use_point ? &point : nullptr, timed.wrench)) {
     response.success = false;
     response.message = "frame '" + request.frame_id + "' cannot be resolved by tf2 (or the point is not finite)";
     return true;
@@ -488,7 +570,7 @@ bool SimulatorNode::onApplyWrench(rigid_body_sim::ApplyWrench::Request& request,
   const double duration = request.duration.toSec();
   timed.end = duration < 0.0 ? -1
                              : timed.start + std::max<std::int64_t>(1, std::llround(duration / config_.dt));
-  timed_wrenches_.push_back(timed);
+  bodies_[body].timed_wrenches.push_back(timed);
   refreshInput();
   response.success = true;
   response.message = "acting from step " + std::to_string(timed.start) +
@@ -498,14 +580,17 @@ bool SimulatorNode::onApplyWrench(rigid_body_sim::ApplyWrench::Request& request,
 
 bool SimulatorNode::onClearWrenches(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   advanceTo(now());
-  timed_wrenches_.clear();
-  topic_input_ = rigid_body::AppliedWrench();
-  wrench_active_ = false;
+  for (BodyChannel& channel : bodies_) {
+    channel.timed_wrenches.clear();
+    channel.topic_input = rigid_body::AppliedWrench();
+    channel.wrench_active = false;
+  }
   refreshInput();
   return true;
 }
 
-bool SimulatorNode::onSetState(rigid_body_sim::SetState::Request& request, rigid_body_sim::SetState::Response& response) {
+bool SimulatorNode::onSetState(std::size_t body, rigid_body_sim::SetState::Request& request,
+                               rigid_body_sim::SetState::Response& response) {
   Eigen::Vector3d p, v, w;
   Eigen::Quaterniond q;
   tf2::fromMsg(request.pose.position, p);
@@ -532,17 +617,18 @@ bool SimulatorNode::onSetState(rigid_body_sim::SetState::Request& request, rigid
   const Eigen::Vector3d v_W = world ? v : Eigen::Vector3d(q * v);
   const Eigen::Vector3d w_B = world ? Eigen::Vector3d(q.conjugate() * w) : w;
   advanceTo(now());
-  rigid_body::State state = rigid_body::stateFromVelocities(simulation_.model().mass, p, q, v_W, w_B);
-  state.t = simulation_.state().t;
-  response.success = simulation_.setState(state);
+  rigid_body::State state = rigid_body::stateFromVelocities(simulation_.model(body).mass, p, q, v_W, w_B);
+  state.t = simulation_.state(body).t;
+  response.success = simulation_.setState(body, state);
   response.message = response.success ? "" : "refused: the state is not finite";
   return true;
 }
 
-bool SimulatorNode::onGetState(rigid_body_sim::GetState::Request&, rigid_body_sim::GetState::Response& response) {
+bool SimulatorNode::onGetState(std::size_t body, rigid_body_sim::GetState::Request&,
+                               rigid_body_sim::GetState::Response& response) {
   advanceTo(now());
-  const rigid_body::State& state = simulation_.state();
-  const rigid_body::Motion motion = rigid_body::motionOf(simulation_.model().mass, state);
+  const rigid_body::State& state = simulation_.state(body);
+  const rigid_body::Motion motion = rigid_body::motionOf(simulation_.model(body).mass, state);
   response.stamp = stampOf(simulation_.clockSteps());
   response.pose.position = tf2::toMsg(state.p_WB);
   response.pose.orientation = tf2::toMsg(state.q_WB);
@@ -550,19 +636,20 @@ bool SimulatorNode::onGetState(rigid_body_sim::GetState::Request&, rigid_body_si
   tf2::toMsg(motion.w_WB_W, response.twist_world.angular);
   tf2::toMsg(Eigen::Vector3d(motion.R_WB.transpose() * motion.v_WB_W), response.twist_body.linear);
   tf2::toMsg(Eigen::Vector3d(motion.R_WB.transpose() * motion.w_WB_W), response.twist_body.angular);
-  response.total_steps = simulation_.integratedSteps();
+  response.total_steps = simulation_.integratedSteps(body);
   response.paused = simulation_.paused();
   return true;
 }
 
 void SimulatorNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   const rigid_body::Simulation& sim = simulation_;
-  const rigid_body::Model& model = sim.model();
   const std::uint64_t problems = counters_.rejected() + counters_.dropped_steps + counters_.timer_overruns;
-  if (sim.divergence() != rigid_body::Divergence::kNone) {
+  std::size_t diverged = 0;
+  for (std::size_t body = 0; body < bodies_.size(); ++body) diverged += sim.divergence(body) != rigid_body::Divergence::kNone;
+  if (diverged > 0) {
     status.summaryf(diagnostic_msgs::DiagnosticStatus::ERROR,
-                    "diverged (%s): publishing the last good state; call reset",
-                    rigid_body::divergenceName(sim.divergence()));
+                    "%zu of %zu bodies diverged (%s): publishing their last good state; call reset", diverged,
+                    bodies_.size(), bodies_.size() == 1 ? rigid_body::divergenceName(sim.divergence(0)) : "see below");
   } else if (problems > reported_problems_) {
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN,
                    "inputs rejected, steps dropped or timer overruns since the last report");
@@ -571,14 +658,10 @@ void SimulatorNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status
   }
   reported_problems_ = problems;
 
-  const rigid_body::State& state = sim.state();
-  const rigid_body::State& initial = sim.initialState();
-  const auto energy = [&](const rigid_body::State& s) {
-    return rigid_body::kineticEnergy(model.mass, s) + rigid_body::potentialEnergy(model.mass, model.forces, s);
-  };
   status.add("integrator", rigid_body::integratorName(sim.integratorType()));
   status.add("dt [s]", config_.dt);
-  status.add("divergence", rigid_body::divergenceName(sim.divergence()));
+  status.add("bodies", bodies_.size());
+  status.add("divergence", diverged == 0 ? "none" : rigid_body::divergenceName(sim.divergence(0)));
   status.add("substeps last tick", counters_.last_substeps);
   status.add("max substeps in one tick", counters_.max_substeps_seen);
   status.add("dropped steps", counters_.dropped_steps);
@@ -594,10 +677,24 @@ void SimulatorNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status
   } else {
     status.add("time since last wrench [s]", "never");
   }
-  status.add("wrench timed out", wrench_timed_out_ ? "true" : "false");
-  status.add("energy change since reset [J]", energy(state) - energy(initial));
-  status.add("|L| change since reset [kg m^2/s]", state.L_W.norm() - initial.L_W.norm());
-  status.add("max ||q| - 1| since reset", max_norm_error_);
+  const bool timed_out =
+      std::any_of(bodies_.begin(), bodies_.end(), [](const BodyChannel& c) { return c.wrench_timed_out; });
+  status.add("wrench timed out", timed_out ? "true" : "false");
+  // Drift per body, keyed by the body frame when the scene has several.
+  for (std::size_t body = 0; body < bodies_.size(); ++body) {
+    const rigid_body::Model& model = sim.model(body);
+    const rigid_body::State& state = sim.state(body);
+    const rigid_body::State& initial = sim.initialState(body);
+    const auto energy = [&](const rigid_body::State& s) {
+      return rigid_body::kineticEnergy(model.mass, s) + rigid_body::potentialEnergy(model.mass, model.forces, s);
+    };
+    const std::string prefix = bodies_.size() == 1 ? "" : config_.bodies[body].body_frame + ": ";
+    if (bodies_.size() > 1) status.add(prefix + "divergence", rigid_body::divergenceName(sim.divergence(body)));
+    status.add(prefix + "step terms", rigid_body::describeTerms(sim.terms(body)));
+    status.add(prefix + "energy change since reset [J]", energy(state) - energy(initial));
+    status.add(prefix + "|L| change since reset [kg m^2/s]", state.L_W.norm() - initial.L_W.norm());
+    status.add(prefix + "max ||q| - 1| since reset", bodies_[body].max_norm_error);
+  }
 }
 
 }  // namespace rigid_body_ros

@@ -39,12 +39,12 @@ TEST(Parameters, DefaultsAreTheDefaultScene) {
   EXPECT_EQ(config.dt, 0.001);
   EXPECT_EQ(config.integrator, rigid_body::IntegratorType::kRk4);
   EXPECT_EQ(config.world_frame, "world");
-  EXPECT_EQ(config.body_frame, "base_link");
-  EXPECT_EQ(config.model.mass.mass(), 1.0);
-  EXPECT_NEAR(config.model.mass.inertia()(0, 0), (0.04 + 0.01) / 12.0, 1e-16);
-  EXPECT_EQ(config.model.forces.gravity_W, Eigen::Vector3d::Zero());
+  EXPECT_EQ(config.bodies[0].body_frame, "base_link");
+  EXPECT_EQ(config.bodies[0].model.mass.mass(), 1.0);
+  EXPECT_NEAR(config.bodies[0].model.mass.inertia()(0, 0), (0.04 + 0.01) / 12.0, 1e-16);
+  EXPECT_EQ(config.bodies[0].model.forces.gravity_W, Eigen::Vector3d::Zero());
   EXPECT_EQ(config.wrench_timeout, 0.0);
-  EXPECT_TRUE(config.publish_tf);
+  EXPECT_TRUE(config.publish.tf);
   EXPECT_TRUE(config.unknown_parameters.empty());
   EXPECT_TRUE(std::isinf(config.wrench_limits.max_force));  // no limit unless set
   EXPECT_EQ(config.max_energy_growth, 2.0);
@@ -80,23 +80,23 @@ TEST(Parameters, ReadsEveryKey) {
   EXPECT_EQ(config.dt, 0.002);
   EXPECT_EQ(config.integrator, rigid_body::IntegratorType::kSemiImplicitEuler);
   EXPECT_EQ(config.world_frame, "odom");
-  EXPECT_EQ(config.body_frame, "body");
-  EXPECT_NEAR(config.model.mass.inertia()(2, 2), 0.5 * 2.0 * 0.01, 1e-15);
-  EXPECT_EQ(config.model.forces.gravity_W.z(), -9.81);
-  EXPECT_EQ(config.model.forces.linear_damping, 0.5);
-  EXPECT_EQ(config.model.forces.angular_damping, 0.25);
+  EXPECT_EQ(config.bodies[0].body_frame, "body");
+  EXPECT_NEAR(config.bodies[0].model.mass.inertia()(2, 2), 0.5 * 2.0 * 0.01, 1e-15);
+  EXPECT_EQ(config.bodies[0].model.forces.gravity_W.z(), -9.81);
+  EXPECT_EQ(config.bodies[0].model.forces.linear_damping, 0.5);
+  EXPECT_EQ(config.bodies[0].model.forces.angular_damping, 0.25);
   EXPECT_EQ(config.wrench_timeout, 0.5);
   EXPECT_EQ(config.max_substeps, 20);
-  EXPECT_FALSE(config.publish_tf);
+  EXPECT_FALSE(config.publish.tf);
   EXPECT_EQ(config.integrator_settings.abs_tolerance, 1e-7);
   EXPECT_EQ(config.wrench_limits.max_force, 50.0);
   EXPECT_EQ(config.wrench_limits.max_torque, 5.0);
   EXPECT_EQ(config.max_energy_growth, 1.5);
   EXPECT_EQ(config.integrator_settings.rel_tolerance, 1e-6);
-  EXPECT_EQ(config.initial.p_WB, Eigen::Vector3d(1.0, 2.0, 3.0));
+  EXPECT_EQ(config.bodies[0].initial.p_WB, Eigen::Vector3d(1.0, 2.0, 3.0));
   // v is given in world axes, ω in body axes: P = M v, L = R I ω_B.
-  EXPECT_TRUE(config.initial.P_W.isApprox(Eigen::Vector3d(2.0, 0.0, 0.0)));
-  EXPECT_TRUE(rigid_body::angularVelocity(config.model.mass, config.initial).isApprox(Eigen::Vector3d(0, 0, 0.5)));
+  EXPECT_TRUE(config.bodies[0].initial.P_W.isApprox(Eigen::Vector3d(2.0, 0.0, 0.0)));
+  EXPECT_TRUE(rigid_body::angularVelocity(config.bodies[0].model.mass, config.bodies[0].initial).isApprox(Eigen::Vector3d(0, 0, 0.5)));
 }
 
 TEST(Parameters, FullInertiaOverridesTheShape) {
@@ -104,9 +104,9 @@ TEST(Parameters, FullInertiaOverridesTheShape) {
   params["shape"] = std::string("sphere");
   params["inertia"] = list({1.0, 2.0, 2.5, 0.1, 0.0, 0.0});
   const NodeConfig config = parseConfig(params);
-  EXPECT_EQ(config.shape, "inertia");
-  EXPECT_EQ(config.model.mass.inertia()(0, 1), 0.1);
-  EXPECT_EQ(config.model.mass.inertia()(1, 0), 0.1);
+  EXPECT_EQ(config.bodies[0].shape, "inertia");
+  EXPECT_EQ(config.bodies[0].model.mass.inertia()(0, 1), 0.1);
+  EXPECT_EQ(config.bodies[0].model.mass.inertia()(1, 0), 0.1);
 }
 
 TEST(Parameters, EachInvalidValueNamesTheParameterAndTheRule) {
@@ -166,8 +166,8 @@ TEST(Parameters, ListsWrittenAsTextAreRead) {
   params["size"] = std::string("[0.5, 0.25, 2]");
   params["initial"]["position"] = std::string(" [1,-2e-1, 3] ");
   const NodeConfig config = parseConfig(params);
-  EXPECT_EQ(config.size, (std::vector<double>{0.5, 0.25, 2.0}));
-  EXPECT_EQ(config.initial.p_WB, Eigen::Vector3d(1.0, -0.2, 3.0));
+  EXPECT_EQ(config.bodies[0].size, (std::vector<double>{0.5, 0.25, 2.0}));
+  EXPECT_EQ(config.bodies[0].initial.p_WB, Eigen::Vector3d(1.0, -0.2, 3.0));
   XmlRpcValue bad;
   bad["size"] = std::string("[0.5, big, 2]");
   EXPECT_NE(errorOf(bad).find("parameter ~size = '[0.5, big, 2]': for a box"), std::string::npos) << errorOf(bad);
@@ -177,7 +177,7 @@ TEST(Parameters, NearlyUnitQuaternionIsNormalised) {
   XmlRpcValue params;
   params["initial"]["orientation"] = list({0.0, 0.0, 0.7071, 0.7071});
   const NodeConfig config = parseConfig(params);
-  EXPECT_NEAR(config.initial.q_WB.norm(), 1.0, 1e-15);
+  EXPECT_NEAR(config.bodies[0].initial.q_WB.norm(), 1.0, 1e-15);
 }
 
 TEST(Parameters, UnknownNamesAreReported) {
@@ -197,18 +197,18 @@ TEST(Parameters, MeshBodyFromAFileOrAPackageUri) {
   params["density"] = 2700.0;
   params["principal_axes"] = true;
   const NodeConfig config = parseConfig(params);
-  EXPECT_EQ(config.shape, "mesh");
+  EXPECT_EQ(config.bodies[0].shape, "mesh");
   // (2·0.1 − 0.02)·0.02·0.005 m³ of aluminium.
-  EXPECT_NEAR(config.model.mass.mass(), 2700.0 * 0.18 * 0.02 * 0.005, 1e-12);
-  const Eigen::Matrix3d& I = config.model.mass.inertia();
+  EXPECT_NEAR(config.bodies[0].model.mass.mass(), 2700.0 * 0.18 * 0.02 * 0.005, 1e-12);
+  const Eigen::Matrix3d& I = config.bodies[0].model.mass.inertia();
   EXPECT_LT(std::abs(I(0, 1)), 1e-12 * I.norm());  // principal axes: diagonal
-  EXPECT_GT(config.X_MB.translation().x(), 0.0);   // the centre of mass, in the mesh frame
+  EXPECT_GT(config.bodies[0].X_MB.translation().x(), 0.0);   // the centre of mass, in the mesh frame
   EXPECT_TRUE(config.unknown_parameters.empty());
 
   // The same file by package:// (rospack finds this package in the test environment).
   XmlRpcValue by_uri = params;
   by_uri["mesh"] = std::string("package://rigid_body_sim/test/meshes/l_bracket.obj");
-  EXPECT_EQ(parseConfig(by_uri).model.mass.mass(), config.model.mass.mass());
+  EXPECT_EQ(parseConfig(by_uri).bodies[0].model.mass.mass(), config.bodies[0].model.mass.mass());
   EXPECT_EQ(rigid_body_ros::resolveMeshUri("/abs/file.stl"), "/abs/file.stl");
 }
 
@@ -243,7 +243,7 @@ TEST(Parameters, MeshProblemsNameTheParameter) {
   frame["mesh_frame"] = std::string("visual");
   EXPECT_NE(errorOf(frame).find("is only for shape mesh"), std::string::npos);
   // An inside-out mesh is repaired, with a warning for the log.
-  EXPECT_EQ(parseConfig(meshParams("/inside_out_box.obj")).mesh_warnings.size(), 1u);
+  EXPECT_EQ(parseConfig(meshParams("/inside_out_box.obj")).bodies[0].mesh_warnings.size(), 1u);
 }
 
 TEST(Parameters, LockstepAndNoise) {
@@ -273,4 +273,87 @@ TEST(Parameters, LockstepAndNoise) {
   XmlRpcValue typo;
   typo["noise"]["postion_stddev"] = list({0.0, 0.0, 0.0});
   EXPECT_EQ(parseConfig(typo).unknown_parameters, std::vector<std::string>{"noise/postion_stddev"});
+}
+
+namespace {
+XmlRpcValue bodyItem(const std::string& name) {
+  XmlRpcValue item;
+  item["name"] = name;
+  return item;
+}
+}  // namespace
+
+TEST(Parameters, BodiesListGivesEachBodyItsKeysAndTheSceneItsOwn) {
+  XmlRpcValue params;
+  params["gravity"] = XmlRpcValue();
+  params["gravity"][0] = 0.0, params["gravity"][1] = 0.0, params["gravity"][2] = -9.81;
+  params["publish"]["state"] = false;
+  XmlRpcValue box = bodyItem("box");
+  box["mass"] = 2.0;
+  box["linear_damping"] = 0.5;
+  XmlRpcValue ball = bodyItem("ball");
+  ball["shape"] = std::string("sphere");
+  ball["size"][0] = 0.2;
+  ball["body_frame"] = std::string("ball_link");
+  ball["wrench_input"] = false;
+  ball["initial"]["position"][0] = 1.0, ball["initial"]["position"][1] = 0.0, ball["initial"]["position"][2] = 0.0;
+  params["bodies"][0] = box;
+  params["bodies"][1] = ball;
+  const NodeConfig config = parseConfig(params);
+  ASSERT_EQ(config.bodies.size(), 2u);
+  EXPECT_EQ(config.bodies[0].name, "box");
+  EXPECT_EQ(config.bodies[0].body_frame, "box");  // the name, unless body_frame is given
+  EXPECT_EQ(config.bodies[0].topic("odom"), "box/odom");
+  EXPECT_EQ(config.bodies[0].model.mass.mass(), 2.0);
+  EXPECT_EQ(config.bodies[0].model.forces.linear_damping, 0.5);
+  EXPECT_TRUE(config.bodies[0].wrench_input);
+  EXPECT_EQ(config.bodies[1].body_frame, "ball_link");
+  EXPECT_EQ(config.bodies[1].shape, "sphere");
+  EXPECT_FALSE(config.bodies[1].wrench_input);
+  EXPECT_EQ(config.bodies[1].initial.p_WB, Eigen::Vector3d(1.0, 0.0, 0.0));
+  for (const rigid_body_ros::BodyConfig& body : config.bodies) EXPECT_EQ(body.model.forces.gravity_W.z(), -9.81);  // scene-wide
+  EXPECT_TRUE(config.publish.tf);
+  EXPECT_TRUE(config.publish.odom);
+  EXPECT_FALSE(config.publish.state);
+  EXPECT_TRUE(config.unknown_parameters.empty());
+  // The flat form is one body without a topic prefix.
+  EXPECT_EQ(parseConfig(XmlRpcValue()).bodies.size(), 1u);
+  EXPECT_EQ(parseConfig(XmlRpcValue()).bodies[0].topic("odom"), "odom");
+}
+
+TEST(Parameters, BodiesListErrorsNameTheItem) {
+  XmlRpcValue bad_mass;
+  bad_mass["bodies"][0] = bodyItem("a");
+  bad_mass["bodies"][1] = bodyItem("b");
+  bad_mass["bodies"][1]["mass"] = -1.0;
+  EXPECT_EQ(errorOf(bad_mass), "parameter ~bodies[1]/mass = -1: must be a finite number > 0 [kg]");
+  XmlRpcValue duplicate;
+  duplicate["bodies"][0] = bodyItem("a");
+  duplicate["bodies"][1] = bodyItem("a");
+  EXPECT_NE(errorOf(duplicate).find("parameter ~bodies[1]/name = 'a': must be a unique name"), std::string::npos)
+      << errorOf(duplicate);
+  XmlRpcValue unnamed;
+  unnamed["bodies"][0] = XmlRpcValue();
+  unnamed["bodies"][0]["mass"] = 1.0;
+  EXPECT_NE(errorOf(unnamed).find("parameter ~bodies[0]/name"), std::string::npos) << errorOf(unnamed);
+  XmlRpcValue both;
+  both["bodies"][0] = bodyItem("a");
+  both["mass"] = 1.0;
+  EXPECT_NE(errorOf(both).find("parameter ~mass = 1: is a body key"), std::string::npos) << errorOf(both);
+  XmlRpcValue same_frame;
+  same_frame["bodies"][0] = bodyItem("a");
+  same_frame["bodies"][1] = bodyItem("b");
+  same_frame["bodies"][1]["body_frame"] = std::string("a");
+  EXPECT_NE(errorOf(same_frame).find("~bodies[1]/body_frame"), std::string::npos) << errorOf(same_frame);
+  XmlRpcValue empty;
+  empty["bodies"].setSize(0);
+  EXPECT_NE(errorOf(empty).find("parameter ~bodies"), std::string::npos);
+  XmlRpcValue typo;
+  typo["bodies"][0] = bodyItem("a");
+  typo["bodies"][0]["mas"] = 1.0;
+  typo["publish"]["od0m"] = true;
+  const NodeConfig config = parseConfig(typo);
+  ASSERT_EQ(config.unknown_parameters.size(), 2u);
+  EXPECT_EQ(config.unknown_parameters[0], "publish/od0m");
+  EXPECT_EQ(config.unknown_parameters[1], "bodies[0]/mas");
 }

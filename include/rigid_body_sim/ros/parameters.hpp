@@ -41,37 +41,57 @@ struct NoiseConfig {
   }
 };
 
-/// Everything the node needs, with the defaults of the README's parameter table.
+/// One body of the scene: the keys of the flat one-body form, or of one item of ~bodies.
+struct BodyConfig {
+  std::string name;                               ///< topic prefix NAME/ ("" in the flat form: no prefix)
+  std::string body_frame = "base_link";
+  std::string shape = "box";                      ///< box | sphere | cylinder | mesh, or "inertia" when given directly
+  std::vector<double> size = {0.4, 0.2, 0.1};     ///< shape dimensions [m]
+  rigid_body::Model model;                        ///< mass properties and force models (the scene's gravity)
+  rigid_body::State initial;                      ///< the state at start-up and after reset
+  Eigen::Vector3d initial_linear_velocity_W = Eigen::Vector3d::Zero();   ///< [m/s], world axes
+  Eigen::Vector3d initial_angular_velocity_B = Eigen::Vector3d::Zero();  ///< [rad/s], body axes
+  bool wrench_input = true;  ///< subscribes NAME/wrench (and takes apply_wrench); false: no input term at all
+  // shape: mesh
+  std::string mesh_path;             ///< the resolved file of mesh
+  std::string mesh_frame;            ///< if set, a static tf body_frame → mesh_frame is published
+  Eigen::Isometry3d X_MB = Eigen::Isometry3d::Identity();  ///< pose of the body frame in the mesh frame
+  std::vector<std::string> mesh_warnings;  ///< repairs made to the mesh, for the start-up log
+
+  /// NAME/ + `topic`, or `topic` alone in the flat form.
+  std::string topic(const std::string& topic) const { return name.empty() ? topic : name + "/" + topic; }
+};
+
+/// Which outputs the scene publishes (~publish/...): a publisher exists only for an enabled output.
+struct PublishConfig {
+  bool tf = true;              ///< world_frame → body_frame of every body, one tf message per tick
+  bool odom = true;            ///< NAME/odom
+  bool state = true;           ///< NAME/state
+  bool applied_wrench = true;  ///< NAME/applied_wrench
+};
+
+/// Everything the node needs: the scene-wide settings and its bodies, with the defaults of the README's
+/// parameter table.
 struct NodeConfig {
   double rate = 100.0;  ///< timer and publish rate [Hz]
   double dt = 0.001;    ///< fixed physics step [s]
   rigid_body::IntegratorType integrator = rigid_body::IntegratorType::kRk4;
   rigid_body::IntegratorSettings integrator_settings;  ///< abs_tolerance, rel_tolerance (dopri5)
   std::string world_frame = "world";
-  std::string body_frame = "base_link";
-  std::string shape = "box";                      ///< box | sphere | cylinder | mesh, or "inertia" when given directly
-  std::vector<double> size = {0.4, 0.2, 0.1};     ///< shape dimensions [m]
-  rigid_body::Model model;                        ///< mass properties and force models
-  rigid_body::State initial;                      ///< the state at start-up and after reset
-  Eigen::Vector3d initial_linear_velocity_W = Eigen::Vector3d::Zero();   ///< [m/s], world axes
-  Eigen::Vector3d initial_angular_velocity_B = Eigen::Vector3d::Zero();  ///< [rad/s], body axes
+  Eigen::Vector3d gravity_W = Eigen::Vector3d::Zero();  ///< [m/s^2], every body's
+  std::vector<BodyConfig> bodies = {BodyConfig()};       ///< the flat form's one body, or ~bodies
   double wrench_timeout = 0.0;       ///< [s]; 0: a wrench holds until the next one
   rigid_body::WrenchLimits wrench_limits;  ///< max_force [N], max_torque [N m]; infinite when not set
   double max_energy_growth = 2.0;    ///< divergence guard: energy factor per tick with no wrench commanded
   std::int64_t max_substeps = 1000;  ///< steps one tick may integrate; the rest is dropped and counted
-  bool publish_tf = true;            ///< broadcast world_frame → body_frame
+  PublishConfig publish;
   bool lockstep = false;          ///< the node owns simulated time and publishes /clock
   double real_time_factor = 1.0;  ///< lockstep pace: simulated seconds per wall second; 0 = as fast as possible
   bool start_paused = false;      ///< start paused (pause/unpause/step services)
-  NoiseConfig noise;
-  // shape: mesh
-  std::string mesh_path;             ///< the resolved file of ~mesh
-  std::string mesh_frame;            ///< if set, a static tf body_frame → mesh_frame is published
-  Eigen::Isometry3d X_MB = Eigen::Isometry3d::Identity();  ///< pose of the body frame in the mesh frame
-  std::vector<std::string> mesh_warnings;  ///< repairs made to the mesh, for the start-up log
+  NoiseConfig noise;              ///< every body's odom_noisy (each body draws from its own generator)
   std::vector<std::string> unknown_parameters;  ///< names set but not known (typos), for a warning
 
-  /// One line with the effective values, for the start-up log.
+  /// One line with the effective scene-wide values, and one per body, for the start-up log.
   std::string describe() const;
 };
 

@@ -1,5 +1,7 @@
-// The ROS node around one simulated body: wrench in, tf2 + odometry + state out, a timer that only calls
-// update(now), and diagnostics. It owns the core Simulation as a member and adds nothing to the physics.
+// The ROS node around one simulated scene: per body NAME/wrench in, NAME/odom and NAME/state out, the tf of
+// every body in one message per tick, a timer that only calls update(now), and diagnostics. It owns the core
+// Simulation as a member and adds nothing to the physics. Only the outputs the scene enables have a
+// publisher, and only bodies with wrench input a subscriber.
 #pragma once
 
 #include <diagnostic_updater/diagnostic_updater.h>
@@ -16,6 +18,7 @@
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <deque>
 #include <memory>
@@ -34,7 +37,7 @@ namespace rigid_body_ros {
 
 /// Counts of what the node applied, refused or lost since start-up.
 struct Counters {
-  std::uint64_t wrenches_applied = 0;
+  std::uint64_t wrenches_applied = 0;         ///< summed over the bodies, as all the counts here
   std::uint64_t rejected_non_finite = 0;     ///< wrenches with a NaN or Inf component
   std::uint64_t rejected_force_limit = 0;    ///< |F| above max_force
   std::uint64_t rejected_torque_limit = 0;   ///< |τ| above max_torque
@@ -53,9 +56,8 @@ struct Counters {
 
 class SimulatorNode {
  public:
-  /// `nh` carries the namespace of the topics and the reset service, `private_nh` the diagnostics'
-  /// settings. Creates publishers, the subscriber, the service and the diagnostics; the clock starts with
-  /// start().
+  /// `nh` carries the namespace of the topics and the services, `private_nh` the diagnostics' settings.
+  /// Creates publishers, subscribers, services and the diagnostics; the clock starts with start().
   SimulatorNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const NodeConfig& config);
 
   /// Anchors simulated time 0 at `start_time` and starts the timer at config.rate (not in lockstep).
@@ -71,18 +73,21 @@ class SimulatorNode {
   /// increase (a backward jump of ROS time re-anchors them to the new time).
   void update(const ros::Time& now);
 
-  void onWrench(const geometry_msgs::WrenchStamped::ConstPtr& message);
+  void onWrench(std::size_t body, const geometry_msgs::WrenchStamped::ConstPtr& message);
   /// wrench_unstamped: world axes about the centre of mass (a drop-in for gazebo_ros_force users).
-  void onWrenchUnstamped(const geometry_msgs::Wrench::ConstPtr& message);
+  void onWrenchUnstamped(std::size_t body, const geometry_msgs::Wrench::ConstPtr& message);
   bool onReset(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
   bool onResetTime(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   bool onPause(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
   bool onUnpause(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
   bool onStep(rigid_body_sim::Step::Request& request, rigid_body_sim::Step::Response& response);
-  bool onApplyWrench(rigid_body_sim::ApplyWrench::Request& request, rigid_body_sim::ApplyWrench::Response& response);
+  bool onApplyWrench(std::size_t body, rigid_body_sim::ApplyWrench::Request& request,
+                     rigid_body_sim::ApplyWrench::Response& response);
   bool onClearWrenches(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
-  bool onSetState(rigid_body_sim::SetState::Request& request, rigid_body_sim::SetState::Response& response);
-  bool onGetState(rigid_body_sim::GetState::Request& request, rigid_body_sim::GetState::Response& response);
+  bool onSetState(std::size_t body, rigid_body_sim::SetState::Request& request,
+                  rigid_body_sim::SetState::Response& response);
+  bool onGetState(std::size_t body, rigid_body_sim::GetState::Request& request,
+                  rigid_body_sim::GetState::Response& response);
 
   const rigid_body::Simulation& simulation() const { return simulation_; }
   const Counters& counters() const { return counters_; }
@@ -95,28 +100,52 @@ class SimulatorNode {
     std::int64_t end;
   };
 
+  /// One body's ROS side: its topics and services, its wrench sources, its output messages.
+  struct BodyChannel {
+    const BodyConfig* config = nullptr;
+    ros::Publisher odom_publisher;
+    ros::Publisher state_publisher;
+    ros::Publisher applied_wrench_publisher;
+    ros::Publisher odom_noisy_publisher;  ///< only with noise
+    std::vector<ros::Subscriber> wrench_subscribers;  ///< wrench and wrench_unstamped, only with wrench input
+    std::vector<ros::ServiceServer> services;         ///< get_state, set_state, apply_wrench (with wrench input)
+    rigid_body::AppliedWrench topic_input;    ///< the latest wrench / wrench_unstamped (latest wins)
+    std::vector<TimedWrench> timed_wrenches;  ///< apply_wrench requests (summed)
+    bool wrench_active = false;               ///< a topic wrench is applied and may time out
+    bool wrench_timed_out = false;
+    ros::Time last_wrench_time;
+    double max_norm_error = 0.0;              ///< max ||q| − 1| since reset
+    std::mt19937_64 noise_generator;
+    std::deque<nav_msgs::Odometry> delayed_noisy;  ///< noisy odometry waiting out noise/delay
+    // Messages whose constant fields (frame ids, covariances) are filled once.
+    nav_msgs::Odometry odom_message;
+    rigid_body_sim::RigidBodyState state_message;
+    geometry_msgs::WrenchStamped applied_wrench_message;
+  };
+
   /// The node's notion of now: the lockstep clock, or ROS time.
   ros::Time now() const;
   /// Integrates up to `now` (used before an input changes, so an input acts from the step at its arrival).
   void advanceTo(const ros::Time& now);
   /// Integrates up to clock step `target`, switching the input at every start and end of a service wrench.
   void advanceToStep(std::int64_t target);
-  /// The topic wrench plus every service wrench active at clock step k.
-  rigid_body::AppliedWrench inputAtStep(std::int64_t k) const;
-  /// Gives the simulation the input of its current clock step (after any change of the wrench sources).
+  /// A body's topic wrench plus every service wrench active at clock step k.
+  rigid_body::AppliedWrench inputAtStep(const BodyChannel& channel, std::int64_t k) const;
+  /// Gives the simulation every body's input of its current clock step (after any change of the wrench sources).
   void refreshInput();
   /// Turns a validated message wrench (in `frame`) into world- or body-fixed parts, about the centre of mass;
   /// `point`, if given, is where the force acts, in `frame`. False if the frame cannot be resolved.
-  bool toAppliedWrench(const geometry_msgs::Wrench& wrench, const std::string& frame, const ros::Time& stamp,
-                       const Eigen::Vector3d* point, rigid_body::AppliedWrench& out);
+  bool toAppliedWrench(std::size_t body, const geometry_msgs::Wrench& wrench, const std::string& frame,
+                       const ros::Time& stamp, const Eigen::Vector3d* point, rigid_body::AppliedWrench& out);
   bool acceptWrench(const geometry_msgs::Wrench& wrench);
-  void setTopicWrench(const rigid_body::AppliedWrench& input, const ros::Time& now);
-  /// Back to the initial state with every wrench cleared (reset and reset_time).
-  void resetBody();
+  void setTopicWrench(std::size_t body, const rigid_body::AppliedWrench& input, const ros::Time& now);
+  /// Back to the initial states with every wrench cleared (reset and reset_time).
+  void resetBodies();
   void publishClock();
-  void publishNoisy(const ros::Time& stamp);
-  /// Applies wrench_timeout: the wrench acts until last arrival + timeout, then drops to zero.
-  void expireWrench(const ros::Time& now);
+  void publishNoisy(BodyChannel& channel, const ros::Time& stamp);
+  /// Applies wrench_timeout: a topic wrench acts until last arrival + timeout, then drops to zero.
+  void expireWrenches(const ros::Time& now);
+  void createBodyChannel(std::size_t body, uint32_t queue);
   void publish();
   ros::Time stampOf(std::int64_t clock_steps) const;
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
@@ -124,22 +153,17 @@ class SimulatorNode {
   NodeConfig config_;
   rigid_body::Simulation simulation_;
   Counters counters_;
+  std::vector<BodyChannel> bodies_;  ///< one per body of the scene, in the order of the simulation's
 
   ros::NodeHandle nh_;
-  ros::Publisher odom_publisher_;
-  ros::Publisher state_publisher_;
-  ros::Subscriber wrench_subscriber_;
-  ros::Subscriber wrench_unstamped_subscriber_;
-  ros::Publisher applied_wrench_publisher_;
   ros::Publisher clock_publisher_;       ///< lockstep only
-  ros::Publisher odom_noisy_publisher_;  ///< only with noise
   ros::ServiceServer reset_service_;
   std::vector<ros::ServiceServer> control_services_;
   ros::Timer timer_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
-  std::unique_ptr<tf2_ros::StaticTransformBroadcaster> mesh_frame_broadcaster_;  ///< only with ~mesh_frame
+  std::unique_ptr<tf2_ros::StaticTransformBroadcaster> mesh_frame_broadcaster_;  ///< only with a mesh_frame
   diagnostic_updater::Updater diagnostics_;
   double min_frequency_;  ///< bounds of the publish-rate status [Hz]
   double max_frequency_;
@@ -151,22 +175,10 @@ class SimulatorNode {
   ros::Time last_now_;              ///< the latest time seen, to detect backward jumps
   bool started_ = false;
   std::int64_t published_clock_steps_ = -1;  ///< the clock step of the last publication
-  bool wrench_active_ = false;               ///< a wrench is applied and may time out
-  bool wrench_timed_out_ = false;
-  ros::Time last_wrench_time_;
-  rigid_body::Divergence reported_divergence_ = rigid_body::Divergence::kNone;
-  double max_norm_error_ = 0.0;              ///< max ||q| − 1| since reset
   std::uint64_t reported_problems_ = 0;      ///< rejections, drops and overruns at the last diagnostics
-  rigid_body::AppliedWrench topic_input_;    ///< the latest wrench / wrench_unstamped (latest wins)
-  std::vector<TimedWrench> timed_wrenches_;  ///< apply_wrench requests (summed)
-  std::mt19937_64 noise_generator_;
-  std::deque<nav_msgs::Odometry> delayed_noisy_;  ///< noisy odometry waiting out noise/delay
-  geometry_msgs::WrenchStamped applied_wrench_message_;
-
-  // Messages whose constant fields (frame ids, covariances) are filled once.
-  nav_msgs::Odometry odom_message_;
-  geometry_msgs::TransformStamped transform_message_;
-  rigid_body_sim::RigidBodyState state_message_;
+  ros::Time last_wrench_time_;               ///< the latest wrench on any body, for the diagnostics
+  /// Every body's transform, sent as one tf message per tick (frame ids filled once).
+  std::vector<geometry_msgs::TransformStamped> transforms_;
 };
 
 }  // namespace rigid_body_ros
