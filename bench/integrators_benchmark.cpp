@@ -2,11 +2,15 @@
 //
 // The general body has everything the step can meet: a full (non-diagonal) inertia tensor, spin, gravity,
 // linear and angular damping, and an input with world and body parts. The isotropic body is the same scene
-// on a sphere; the torque-free body is the asymmetric scene of the tests. Each iteration is one step of 1 ms.
+// on a sphere; the torque-free body is the asymmetric scene of the tests; the gravity-only body falls without
+// spin or input. Each case runs twice: "all_terms" evaluates every term of the step (StepTerms::all()), and
+// "assembled" only those the scene declares (assembleTerms), so the ratio is what leaving out saves.
+// Each iteration is one step of 1 ms.
 #include <benchmark/benchmark.h>
 
 #include "rigid_body_sim/integrators.hpp"
 #include "rigid_body_sim/kinematics.hpp"
+#include "rigid_body_sim/step_terms.hpp"
 
 namespace {
 
@@ -37,9 +41,13 @@ AppliedWrench generalInput() {
   return input;
 }
 
+enum class Terms { kAll, kAssembled };
+
 // Times one step of 1 ms per iteration and reports the f evaluations per step.
-void timeSteps(benchmark::State& bench, IntegratorType type, const Model& model, const AppliedWrench& input,
-               State state) {
+void timeSteps(benchmark::State& bench, IntegratorType type, Model model, const AppliedWrench& input, State state,
+               Terms terms) {
+  model.terms = terms == Terms::kAll ? StepTerms::all()
+                                     : assembleTerms(model.mass, model.forces, state, !input.isZero());
   Integrator integrator(type);
   for (auto _ : bench) {
     integrator.step(model, input, 0.001, state);
@@ -49,31 +57,51 @@ void timeSteps(benchmark::State& bench, IntegratorType type, const Model& model,
       static_cast<double>(integrator.statistics().rhs_evaluations) / static_cast<double>(integrator.statistics().steps);
 }
 
-void stepGeneralBody(benchmark::State& bench, IntegratorType type) {
+void stepGeneralBody(benchmark::State& bench, IntegratorType type, Terms terms) {
   const Model model = generalModel();
-  timeSteps(bench, type, model, generalInput(), spinningState(model.mass));
+  timeSteps(bench, type, model, generalInput(), spinningState(model.mass), terms);
 }
 
 // The general body's scene on an isotropic body (a sphere): ω = L/I₀ skips the world-inertia rotation.
-void stepIsotropicBody(benchmark::State& bench, IntegratorType type) {
+void stepIsotropicBody(benchmark::State& bench, IntegratorType type, Terms terms) {
   Model model = generalModel();
   model.mass = MassProperties::sphere(1.5, 0.2);
-  timeSteps(bench, type, model, generalInput(), spinningState(model.mass));
+  timeSteps(bench, type, model, generalInput(), spinningState(model.mass), terms);
 }
 
-void stepTorqueFreeBody(benchmark::State& bench, IntegratorType type) {
+// Zero g, no damping, no input, spinning: assembled, the step has rotation but no force term.
+void stepTorqueFreeBody(benchmark::State& bench, IntegratorType type, Terms terms) {
   const Model model{MassProperties::fromInertia(1.0, Eigen::Vector3d(1, 2, 3).asDiagonal().toDenseMatrix()),
                     ForceModel{}};
   State state;
   state.L_W = Eigen::Vector3d(1.0, 0.5, 2.0);
-  timeSteps(bench, type, model, AppliedWrench(), state);
+  timeSteps(bench, type, model, AppliedWrench(), state, terms);
+}
+
+// A box falling without spin or input: assembled, the step is translation under gravity only.
+void stepGravityOnlyBody(benchmark::State& bench, IntegratorType type, Terms terms) {
+  Model model{MassProperties::box(1.0, Eigen::Vector3d(0.4, 0.2, 0.1)), ForceModel{}};
+  model.forces.gravity_W = Eigen::Vector3d(0.0, 0.0, -9.81);
+  State state;
+  state.p_WB = Eigen::Vector3d(0.0, 0.0, 10.0);
+  state.q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()));
+  timeSteps(bench, type, model, AppliedWrench(), state, terms);
 }
 
 int registerAll() {
-  for (IntegratorType type : allIntegrators()) {
-    benchmark::RegisterBenchmark(("general/" + integratorName(type)).c_str(), stepGeneralBody, type);
-    benchmark::RegisterBenchmark(("isotropic/" + integratorName(type)).c_str(), stepIsotropicBody, type);
-    benchmark::RegisterBenchmark(("torque_free/" + integratorName(type)).c_str(), stepTorqueFreeBody, type);
+  using Case = void (*)(benchmark::State&, IntegratorType, Terms);
+  const std::pair<const char*, Case> cases[] = {{"general", stepGeneralBody},
+                                                {"isotropic", stepIsotropicBody},
+                                                {"torque_free", stepTorqueFreeBody},
+                                                {"gravity_only", stepGravityOnlyBody}};
+  for (const auto& [name, run] : cases) {
+    for (IntegratorType type : allIntegrators()) {
+      for (Terms terms : {Terms::kAll, Terms::kAssembled}) {
+        const std::string label =
+            std::string(name) + "/" + integratorName(type) + (terms == Terms::kAll ? "/all_terms" : "/assembled");
+        benchmark::RegisterBenchmark(label.c_str(), run, type, terms);
+      }
+    }
   }
   return 0;
 }

@@ -14,25 +14,8 @@
 #include <sstream>
 #include <string>
 
+#include "process_cpu.hpp"
 #include "rigid_body_sim/RigidBodyState.h"
-
-namespace {
-
-// utime + stime of a process, in seconds.
-double cpuSecondsOf(int pid) {
-  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
-  std::string line;
-  std::getline(stat, line);
-  std::istringstream fields(line.substr(line.rfind(')') + 2));  // after "pid (comm) "
-  std::string field;
-  double ticks = 0.0;
-  for (int i = 3; i <= 15 && fields >> field; ++i) {
-    if (i == 14 || i == 15) ticks += std::stod(field);  // utime, stime
-  }
-  return ticks / static_cast<double>(sysconf(_SC_CLK_TCK));
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "wrench_load", ros::init_options::AnonymousName);

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# Builds (Release) and runs the integrator benchmark: ns per step, median of 5 repetitions.
+# Builds (Release) and runs the benchmarks: ns per step per integrator and case (every term against the
+# assembled ones, median of 5), and a scene of N = 1 … 10 000 bodies (ns per body and step, median of 3);
+# prints both as the README's tables.
 # Extra arguments go to Google Benchmark, e.g. --benchmark_filter=general
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
@@ -9,5 +11,13 @@ echo "machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'); $(g++ --
 echo "mass properties from meshes:"
 "$WORKSPACE/devel/lib/rigid_body_sim/mesh_mass_properties_table"
 echo
-"$WORKSPACE/devel/lib/rigid_body_sim/integrators_benchmark" --benchmark_repetitions=5 \
-  --benchmark_report_aggregates_only=true --benchmark_min_time=0.2 "$@"
+bench="$WORKSPACE/devel/lib/rigid_body_sim"
+results=$(mktemp -d)
+"$bench/integrators_benchmark" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+  --benchmark_min_time=0.2 --benchmark_out="$results/steps.json" --benchmark_out_format=json "$@"
+"$bench/scene_benchmark" --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
+  --benchmark_min_time=0.2 --benchmark_out="$results/scene.json" --benchmark_out_format=json
+echo
+echo "ns per step, every term against the assembled ones (median):"
+/usr/bin/python3 "$PACKAGE_DIR/scripts/benchmark_table.py" "$results/steps.json" "$results/scene.json"
+rm -rf "$results"

@@ -62,3 +62,13 @@ source_workspace() {
   source "$WORKSPACE/devel/setup.bash"
   set -u 2>/dev/null || true
 }
+
+# A ROS master of our own on port $1, beside any other. It, and every PID later added to STOP_PIDS, is
+# stopped when the script exits.
+start_private_master() {
+  export ROS_MASTER_URI="http://localhost:$1"
+  roscore -p "$1" >/dev/null 2>&1 &
+  STOP_PIDS="$!"
+  trap 'kill $STOP_PIDS 2>/dev/null; wait 2>/dev/null' EXIT
+  sleep 3
+}

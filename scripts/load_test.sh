@@ -7,13 +7,9 @@ source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 install_dependencies
 build_workspace
 source_workspace
-export ROS_MASTER_URI=http://localhost:11411  # a master of our own, beside any other
-roscore -p 11411 >/dev/null 2>&1 &
-core=$!
-trap 'kill $node $core 2>/dev/null; wait 2>/dev/null' EXIT
-sleep 3
+start_private_master 11411
 rosrun rigid_body_sim rigid_body_node __ns:=load >/dev/null 2>&1 &
-node=$!
+STOP_PIDS="$STOP_PIDS $!"
 sleep 2
 echo "machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'); node: default scene (rate 100 Hz, dt 1 ms)"
 "$WORKSPACE/devel/lib/rigid_body_sim/wrench_load" /load "$(pgrep -f 'rigid_body_node __ns:=load' | head -1)" "${1:-10000}" "${2:-10}"

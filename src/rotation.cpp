@@ -24,20 +24,6 @@ Eigen::Quaterniond quaternionExp(const Eigen::Vector3d& rotation_vector) {
   return Eigen::Quaterniond(std::cos(half), vec.x(), vec.y(), vec.z());
 }
 
-Eigen::Matrix3d rotationMatrix(const Eigen::Quaterniond& q) {
-  const double s = 2.0 / q.squaredNorm();
-  const double x = q.x(), y = q.y(), z = q.z(), w = q.w();
-  const double sx = s * x, sy = s * y, sz = s * z;
-  const double wx = w * sx, wy = w * sy, wz = w * sz;
-  const double xx = x * sx, xy = y * sx, xz = z * sx;
-  const double yy = y * sy, yz = z * sy, zz = z * sz;
-  Eigen::Matrix3d R;
-  R << 1.0 - (yy + zz), xy - wz, xz + wy,  //
-      xy + wz, 1.0 - (xx + zz), yz - wx,   //
-      xz - wy, yz + wx, 1.0 - (xx + yy);
-  return R;
-}
-
 Eigen::Vector3d quaternionLog(const Eigen::Quaterniond& q) {
   // Take the representative with w ≥ 0 so the angle lies in [0, π].
   const double sign = q.w() < 0.0 ? -1.0 : 1.0;

@@ -82,13 +82,25 @@ void SimulatorNode::createBodyChannel(std::size_t body, uint32_t queue) {
   channel.state_message.header.frame_id = config_.world_frame;
   channel.state_message.child_frame_id = config.body_frame;
   channel.applied_wrench_message.header.frame_id = config_.world_frame;
-  if (config_.publish.odom) channel.odom_publisher = nh_.advertise<nav_msgs::Odometry>(config.topic("odom"), queue);
+  // Counts a publisher's subscribers in `count` (bodies_ is sized once, so the channel stays where it is).
+  const auto advertise = [&](auto message, const std::string& topic, int BodyChannel::*count) {
+    const ros::SubscriberStatusCallback connected = [this, body, count](const ros::SingleSubscriberPublisher&) {
+      ++(bodies_[body].*count);
+    };
+    const ros::SubscriberStatusCallback disconnected = [this, body, count](const ros::SingleSubscriberPublisher&) {
+      --(bodies_[body].*count);
+    };
+    return nh_.advertise<decltype(message)>(config.topic(topic), queue, connected, disconnected);
+  };
+  if (config_.publish.odom) {
+    channel.odom_publisher = advertise(nav_msgs::Odometry(), "odom", &BodyChannel::odom_subscribers);
+  }
   if (config_.publish.state) {
-    channel.state_publisher = nh_.advertise<rigid_body_sim::RigidBodyState>(config.topic("state"), queue);
+    channel.state_publisher = advertise(rigid_body_sim::RigidBodyState(), "state", &BodyChannel::state_subscribers);
   }
   if (config_.publish.applied_wrench) {
-    channel.applied_wrench_publisher =
-        nh_.advertise<geometry_msgs::WrenchStamped>(config.topic("applied_wrench"), queue);
+    channel.applied_wrench_publisher = advertise(geometry_msgs::WrenchStamped(), "applied_wrench",
+                                                 &BodyChannel::applied_wrench_subscribers);
   }
   if (config_.noise.enabled()) {
     channel.odom_noisy_publisher = nh_.advertise<nav_msgs::Odometry>(config.topic("odom_noisy"), queue);
@@ -288,17 +300,19 @@ void SimulatorNode::publish() {
       transforms_[body].header.stamp = stamp;
       fillTransform(state, transforms_[body]);
     }
-    if (config_.publish.odom || config_.noise.enabled()) {
+    const bool odom = channel.odom_subscribers > 0;
+    if (odom || config_.noise.enabled()) {
       channel.odom_message.header.stamp = stamp;
       fillOdometry(simulation_.model(body).mass, state, channel.odom_message);
-      if (config_.publish.odom) channel.odom_publisher.publish(channel.odom_message);
+      if (odom) channel.odom_publisher.publish(channel.odom_message);
     }
-    if (config_.publish.state || config_.publish.applied_wrench) {
+    const bool applied_wrench = channel.applied_wrench_subscribers > 0;
+    if (channel.state_subscribers > 0 || applied_wrench) {
       channel.state_message.header.stamp = stamp;
       fillStateMessage(simulation_.model(body), state, simulation_.input(body), channel.state_message);
-      if (config_.publish.state) channel.state_publisher.publish(channel.state_message);
+      if (channel.state_subscribers > 0) channel.state_publisher.publish(channel.state_message);
     }
-    if (config_.publish.applied_wrench) {
+    if (applied_wrench) {
       channel.applied_wrench_message.header.stamp = stamp;
       channel.applied_wrench_message.wrench = channel.state_message.applied_wrench;  // world axes, about the CoM
       channel.applied_wrench_publisher.publish(channel.applied_wrench_message);

@@ -107,6 +107,12 @@ class SimulatorNode {
     ros::Publisher state_publisher;
     ros::Publisher applied_wrench_publisher;
     ros::Publisher odom_noisy_publisher;  ///< only with noise
+    // Subscribers connected to odom, state and applied_wrench (from the publishers' status callbacks): an
+    // output nobody listens to is not even filled. roscpp finds a publication by a linear search over every
+    // advertised topic, so publishing 1000 bodies' unheard odometry alone cost O(N²) per tick.
+    int odom_subscribers = 0;
+    int state_subscribers = 0;
+    int applied_wrench_subscribers = 0;
     std::vector<ros::Subscriber> wrench_subscribers;  ///< wrench and wrench_unstamped, only with wrench input
     std::vector<ros::ServiceServer> services;         ///< get_state, set_state, apply_wrench (with wrench input)
     rigid_body::AppliedWrench topic_input;    ///< the latest wrench / wrench_unstamped (latest wins)

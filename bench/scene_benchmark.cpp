@@ -1,0 +1,68 @@
+// Cost of a scene of N bodies per body and step (Google Benchmark), N = 1 … 10 000. Not a test: run by
+// scripts/benchmark.sh. The per-body time must stay flat in N (a cost linear in the bodies): the Simulation
+// keeps each field of the bodies in one contiguous array and steps them body by body, with no allocation
+// and no virtual call in the loop.
+//
+// The scene is the swarm's: bodies cycling through box, sphere and cylinder with spin, zero g, half of them
+// pushed by a constant wrench. One iteration is one tick of the node's default timing: 10 steps of 1 ms.
+#include <benchmark/benchmark.h>
+
+#include <vector>
+
+#include "rigid_body_sim/kinematics.hpp"
+#include "rigid_body_sim/simulation.hpp"
+
+namespace {
+
+using namespace rigid_body;
+
+constexpr std::int64_t kStepsPerTick = 10;
+
+Simulation swarm(std::size_t bodies, IntegratorType type) {
+  const MassProperties shapes[] = {MassProperties::box(1.0, Eigen::Vector3d(0.4, 0.2, 0.1)),
+                                   MassProperties::sphere(1.0, 0.15), MassProperties::cylinder(1.0, 0.1, 0.4)};
+  std::vector<BodyDefinition> definitions;
+  for (std::size_t i = 0; i < bodies; ++i) {
+    const MassProperties& mass = shapes[i % 3];
+    const State initial = stateFromVelocities(
+        mass, Eigen::Vector3d(static_cast<double>(i % 100), static_cast<double>(i / 100), 0.0),
+        Eigen::Quaterniond::Identity(), Eigen::Vector3d(0.0, 0.0, 0.01 * static_cast<double>(i % 7)),
+        Eigen::Vector3d(0.1, 0.2, 0.1 * static_cast<double>(i % 5)));
+    definitions.push_back({Model{mass, ForceModel{}}, initial, i % 2 == 0});
+  }
+  Simulation simulation(definitions, type, 0.001, 1000);
+  AppliedWrench push;
+  push.world.force = Eigen::Vector3d(0.1, 0.0, 0.0);
+  push.body.torque = Eigen::Vector3d(0.0, 0.0, 0.001);
+  for (std::size_t i = 0; i < bodies; i += 2) simulation.setInput(i, push);
+  return simulation;
+}
+
+void stepScene(benchmark::State& bench, IntegratorType type) {
+  const auto bodies = static_cast<std::size_t>(bench.range(0));
+  Simulation simulation = swarm(bodies, type);
+  for (auto _ : bench) {
+    simulation.stepNow(kStepsPerTick);
+    benchmark::DoNotOptimize(simulation.state(bodies - 1));
+  }
+  // ns per body and step: the number that must stay flat in N.
+  bench.counters["per_body_step"] = benchmark::Counter(
+      static_cast<double>(bench.iterations()) * static_cast<double>(bodies * kStepsPerTick),
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  bench.counters["bodies"] = static_cast<double>(bodies);
+}
+
+int registerAll() {
+  for (IntegratorType type : {IntegratorType::kSemiImplicitEuler, IntegratorType::kRk4}) {
+    benchmark::RegisterBenchmark(("scene/" + integratorName(type)).c_str(), stepScene, type)
+        ->RangeMultiplier(10)
+        ->Range(1, 10000)
+        ->Unit(benchmark::kMicrosecond);
+  }
+  return 0;
+}
+const int registered = registerAll();
+
+}  // namespace
+
+BENCHMARK_MAIN();

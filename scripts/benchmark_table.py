@@ -1,0 +1,45 @@
+#!/usr/bin/env python3
+"""Reads Google Benchmark JSON (integrators_benchmark, scene_benchmark) and prints the README's tables:
+ns per step with every term and with the assembled terms, and their ratio; ns per body-step against N."""
+import json
+import sys
+
+
+def medians(path):
+    with open(path) as f:
+        data = json.load(f)
+    rows = {}
+    for b in data["benchmarks"]:
+        if b.get("aggregate_name", "median") != "median":
+            continue
+        name = b.get("run_name", b["name"]).replace("_median", "")
+        rows[name] = b
+    return rows
+
+
+def main():
+    steps = medians(sys.argv[1])
+    print("| case | integrator | all terms [ns] | assembled [ns] | saving |")
+    print("|---|---|---|---|---|")
+    for name, b in steps.items():
+        if not name.endswith("/all_terms"):
+            continue
+        base = name[: -len("/all_terms")]
+        case, method = base.split("/", 1)
+        assembled = steps.get(base + "/assembled")
+        if not assembled:
+            continue
+        ratio = b["real_time"] / assembled["real_time"]
+        print(f"| {case} | {method} | {b['real_time']:.0f} | {assembled['real_time']:.0f} | {ratio:.2f}× |")
+    if len(sys.argv) > 2:
+        scene = medians(sys.argv[2])
+        print()
+        print("| integrator | bodies | µs per tick (10 steps) | ns per body and step |")
+        print("|---|---|---|---|")
+        for name, b in scene.items():
+            method, bodies = name.split("/")[1:3]
+            print(f"| {method} | {bodies} | {b['real_time']:.1f} | {b['per_body_step'] * 1e9:.0f} |")
+
+
+if __name__ == "__main__":
+    main()
