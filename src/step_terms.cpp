@@ -16,7 +16,7 @@ StepTerms assembleTerms(const MassProperties& mass, const ForceModel& forces, co
 
 std::string describeTerms(const StepTerms& terms) {
   std::string text = "translation";
-  if (terms.rotation) text += terms.world_inertia ? ", rotation (ω = R I⁻¹ Rᵀ L)" : ", rotation (isotropic: ω = L/I₀)";
+  if (terms.rotation) text += terms.world_inertia ? ", rotation (w = R I^-1 R^T L)" : ", rotation (isotropic: w = L/I0)";
   if (terms.input) text += ", wrench input";
   if (terms.gravity) text += ", gravity";
   if (terms.linear_damping) text += ", linear damping";

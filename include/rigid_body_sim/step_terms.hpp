@@ -36,7 +36,8 @@ struct StepTerms {
 /// inertia is isotropic.
 StepTerms assembleTerms(const MassProperties& mass, const ForceModel& forces, const State& state, bool takes_input);
 
-/// "translation, rotation (isotropic: ω = L/I₀), input, gravity": the assembled terms, for the start-up log.
+/// "translation, rotation (isotropic: w = L/I0), wrench input, gravity": the assembled terms, for the start-up
+/// log (ASCII: roslaunch prints other characters as "?" under a C locale).
 std::string describeTerms(const StepTerms& terms);
 
 }  // namespace rigid_body

@@ -96,8 +96,8 @@ TEST(Scene, DiagnosticsShowTheTermsEachBodysStepWasAssembledFrom) {
   }));
   // Zero g, no damping: neither term anywhere. The drifter has no input and no spin: translation only.
   EXPECT_EQ(drifter, "translation");
-  EXPECT_EQ(box, "translation, rotation (ω = R I⁻¹ Rᵀ L), wrench input");
-  EXPECT_EQ(ball, "translation, rotation (isotropic: ω = L/I₀), wrench input");
+  EXPECT_EQ(box, "translation, rotation (w = R I^-1 R^T L), wrench input");
+  EXPECT_EQ(ball, "translation, rotation (isotropic: w = L/I0), wrench input");
 }
 
 int main(int argc, char** argv) {
