@@ -204,25 +204,19 @@ State bussStep(const Model& model, const AppliedWrench& input, double h, const S
   const Wrench wrench = totalWrench(model, motion, input);
   const Eigen::Vector3d& w = motion.w_WB_W;
   const double half_h2 = 0.5 * h * h;
-  if (!model.terms.rotation) {  // no torque, no input: F = M g − c v, Ḟ = −c F/M
-    State next = y;
-    const Eigen::Vector3d force_rate = -(model.forces.linear_damping * model.mass.inverseMass()) * wrench.force;
-    next.p_WB = y.p_WB + h * motion.v_WB_W + (half_h2 * model.mass.inverseMass()) * wrench.force;
-    next.P_W = y.P_W + h * wrench.force + half_h2 * force_rate;
-    next.t = y.t + h;
-    return next;
-  }
-  const Eigen::Vector3d alpha = applyWorldInverseInertia(model, motion.R_WB, wrench.torque - w.cross(y.L_W));
-  const Eigen::Vector3d force_rate = w.cross(motion.R_WB * input.body.force) -
-                                     (model.forces.linear_damping * model.mass.inverseMass()) * wrench.force;
-  const Eigen::Vector3d torque_rate = w.cross(motion.R_WB * input.body.torque) - model.forces.angular_damping * alpha;
-  State next;
+  // Ḟ = −c F/M, plus ω × R f_B for a body that turns (without rotation there is no input either).
+  Eigen::Vector3d force_rate = -(model.forces.linear_damping * model.mass.inverseMass()) * wrench.force;
+  if (model.terms.rotation) force_rate += w.cross(motion.R_WB * input.body.force);
+  State next = y;
   next.p_WB = y.p_WB + h * motion.v_WB_W + (half_h2 * model.mass.inverseMass()) * wrench.force;
   next.P_W = y.P_W + h * wrench.force + half_h2 * force_rate;
+  next.t = y.t + h;
+  if (!model.terms.rotation) return next;
+  const Eigen::Vector3d alpha = applyWorldInverseInertia(model, motion.R_WB, wrench.torque - w.cross(y.L_W));
+  const Eigen::Vector3d torque_rate = w.cross(motion.R_WB * input.body.torque) - model.forces.angular_damping * alpha;
   next.L_W = y.L_W + h * wrench.torque + half_h2 * torque_rate;
   const Eigen::Vector3d omega_bar = w + (0.5 * h) * alpha + (h * h / 12.0) * alpha.cross(w);
   next.q_WB = quaternionExp(h * omega_bar) * y.q_WB;
-  next.t = y.t + h;
   return normalised(next);
 }
 

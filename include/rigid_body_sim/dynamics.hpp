@@ -7,8 +7,8 @@
 
 #include "rigid_body_sim/forces.hpp"
 #include "rigid_body_sim/kinematics.hpp"
-#include "rigid_body_sim/rotation.hpp"
 #include "rigid_body_sim/mass_properties.hpp"
+#include "rigid_body_sim/rotation.hpp"
 #include "rigid_body_sim/state.hpp"
 #include "rigid_body_sim/step_terms.hpp"
 
@@ -53,7 +53,6 @@ Derivative derivative(const Model& model, const State& state, const AppliedWrenc
 
 // ---------------------------------------------------------------------------------------------------------
 // Definitions: inline, since they are the hot step of every integrator (a call per stage otherwise).
-
 
 inline Eigen::Vector3d applyWorldInverseInertia(const Model& model, const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& v_W) {
   if (!model.terms.world_inertia) return model.mass.inverseInertia()(0, 0) * v_W;  // isotropic: any axes

@@ -75,7 +75,6 @@ SimulatorNode::SimulatorNode(const ros::NodeHandle& nh, const ros::NodeHandle& p
 void SimulatorNode::createBodyChannel(std::size_t body, uint32_t queue) {
   BodyChannel& channel = bodies_[body];
   const BodyConfig& config = config_.bodies[body];
-  channel.config = &config;
   // Ground truth: the covariances stay zero.
   channel.odom_message.header.frame_id = config_.world_frame;
   channel.odom_message.child_frame_id = config.body_frame;
@@ -240,10 +239,17 @@ void SimulatorNode::advanceToStep(std::int64_t target) {
 }
 
 void SimulatorNode::refreshInput() {
-  const std::int64_t k = simulation_.clockSteps();
-  for (std::size_t body = 0; body < bodies_.size(); ++body) {
-    if (config_.bodies[body].wrench_input) simulation_.setInput(body, inputAtStep(bodies_[body], k));
-  }
+  for (std::size_t body = 0; body < bodies_.size(); ++body) refreshInput(body);
+}
+
+void SimulatorNode::refreshInput(std::size_t body) {
+  if (config_.bodies[body].wrench_input) simulation_.setInput(body, inputAtStep(bodies_[body], simulation_.clockSteps()));
+}
+
+std::size_t SimulatorNode::firstDivergedBody() const {
+  std::size_t body = 0;
+  while (body < bodies_.size() && simulation_.divergence(body) == rigid_body::Divergence::kNone) ++body;
+  return body;
 }
 
 rigid_body::AppliedWrench SimulatorNode::inputAtStep(const BodyChannel& channel, std::int64_t k) const {
@@ -263,22 +269,24 @@ void SimulatorNode::expireWrenches(const ros::Time& now) {
   const ros::Duration timeout(config_.wrench_timeout);
   // In the order of expiry, so that each wrench acts exactly up to its own.
   for (;;) {
-    BodyChannel* first = nullptr;
-    for (BodyChannel& channel : bodies_) {
+    std::size_t first = bodies_.size();
+    for (std::size_t body = 0; body < bodies_.size(); ++body) {
+      const BodyChannel& channel = bodies_[body];
       if (channel.wrench_active && channel.last_wrench_time + timeout <= now &&
-          (!first || channel.last_wrench_time < first->last_wrench_time)) {
-        first = &channel;
+          (first == bodies_.size() || channel.last_wrench_time < bodies_[first].last_wrench_time)) {
+        first = body;
       }
     }
-    if (!first) return;
-    advanceTo(first->last_wrench_time + timeout);  // the wrench acts up to its expiry, not up to this tick
-    first->topic_input = rigid_body::AppliedWrench();
-    refreshInput();
-    first->wrench_active = false;
-    first->wrench_timed_out = true;
+    if (first == bodies_.size()) return;
+    BodyChannel& channel = bodies_[first];
+    advanceTo(channel.last_wrench_time + timeout);  // the wrench acts up to its expiry, not up to this tick
+    channel.topic_input = rigid_body::AppliedWrench();
+    refreshInput(first);
+    channel.wrench_active = false;
+    channel.wrench_timed_out = true;
     ++counters_.wrench_timeouts;
     ROS_INFO("rigid_body_node: %s: no wrench for %.3f s (wrench_timeout): applied wrench set to zero",
-             first->config->body_frame.c_str(), config_.wrench_timeout);
+             config_.bodies[first].body_frame.c_str(), config_.wrench_timeout);
   }
 }
 
@@ -356,7 +364,6 @@ void SimulatorNode::publishNoisy(BodyChannel& channel, const ros::Time& stamp) {
     channel.delayed_noisy.pop_front();
   }
 }
-
 
 void SimulatorNode::publishClock() {
   rosgraph_msgs::Clock clock;
@@ -456,7 +463,7 @@ bool SimulatorNode::toAppliedWrench(std::size_t body, const geometry_msgs::Wrenc
 void SimulatorNode::setTopicWrench(std::size_t body, const rigid_body::AppliedWrench& input, const ros::Time& now) {
   BodyChannel& channel = bodies_[body];
   channel.topic_input = input;
-  refreshInput();
+  refreshInput(body);
   ++counters_.wrenches_applied;
   channel.wrench_active = true;
   channel.wrench_timed_out = false;
@@ -550,8 +557,11 @@ bool SimulatorNode::onStep(rigid_body_sim::Step::Request& request, rigid_body_si
     refreshInput();
     simulation_.stepNow(request.steps);
   }
-  response.success = !simulation_.anyDiverged();
-  response.message = response.success ? "" : "a body diverged (see diagnostics)";
+  const std::size_t diverged = firstDivergedBody();
+  response.success = diverged == bodies_.size();
+  response.message = response.success ? ""
+                                      : config_.bodies[diverged].body_frame + ": " +
+                                            rigid_body::divergenceName(simulation_.divergence(diverged));
   response.sim_time = stampOf(simulation_.clockSteps()).toSec();
   response.total_steps = simulation_.integratedSteps();
   return true;
@@ -585,7 +595,7 @@ bool SimulatorNode::onApplyWrench(std::size_t body, rigid_body_sim::ApplyWrench:
   timed.end = duration < 0.0 ? -1
                              : timed.start + std::max<std::int64_t>(1, std::llround(duration / config_.dt));
   bodies_[body].timed_wrenches.push_back(timed);
-  refreshInput();
+  refreshInput(body);
   response.success = true;
   response.message = "acting from step " + std::to_string(timed.start) +
                      (timed.end < 0 ? " until clear_wrenches" : " to step " + std::to_string(timed.end));
@@ -660,10 +670,14 @@ void SimulatorNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status
   const std::uint64_t problems = counters_.rejected() + counters_.dropped_steps + counters_.timer_overruns;
   std::size_t diverged = 0;
   for (std::size_t body = 0; body < bodies_.size(); ++body) diverged += sim.divergence(body) != rigid_body::Divergence::kNone;
+  const std::size_t first_diverged = firstDivergedBody();
+  // The reason of the first body that diverged ("none" while none has).
+  const char* divergence = rigid_body::divergenceName(
+      first_diverged < bodies_.size() ? sim.divergence(first_diverged) : rigid_body::Divergence::kNone);
   if (diverged > 0) {
     status.summaryf(diagnostic_msgs::DiagnosticStatus::ERROR,
                     "%zu of %zu bodies diverged (%s): publishing their last good state; call reset", diverged,
-                    bodies_.size(), bodies_.size() == 1 ? rigid_body::divergenceName(sim.divergence(0)) : "see below");
+                    bodies_.size(), divergence);
   } else if (problems > reported_problems_) {
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN,
                    "inputs rejected, steps dropped or timer overruns since the last report");
@@ -675,7 +689,7 @@ void SimulatorNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status
   status.add("integrator", rigid_body::integratorName(sim.integratorType()));
   status.add("dt [s]", config_.dt);
   status.add("bodies", bodies_.size());
-  status.add("divergence", diverged == 0 ? "none" : rigid_body::divergenceName(sim.divergence(0)));
+  status.add("divergence", divergence);
   status.add("substeps last tick", counters_.last_substeps);
   status.add("max substeps in one tick", counters_.max_substeps_seen);
   status.add("dropped steps", counters_.dropped_steps);

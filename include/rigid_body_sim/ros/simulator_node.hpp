@@ -102,7 +102,6 @@ class SimulatorNode {
 
   /// One body's ROS side: its topics and services, its wrench sources, its output messages.
   struct BodyChannel {
-    const BodyConfig* config = nullptr;
     ros::Publisher odom_publisher;
     ros::Publisher state_publisher;
     ros::Publisher applied_wrench_publisher;
@@ -139,6 +138,10 @@ class SimulatorNode {
   rigid_body::AppliedWrench inputAtStep(const BodyChannel& channel, std::int64_t k) const;
   /// Gives the simulation every body's input of its current clock step (after any change of the wrench sources).
   void refreshInput();
+  /// The same for one body, when only its wrench sources changed (a wrench message costs O(1), not O(bodies)).
+  void refreshInput(std::size_t body);
+  /// The first body that has diverged, or bodies_.size() when none has.
+  std::size_t firstDivergedBody() const;
   /// Turns a validated message wrench (in `frame`) into world- or body-fixed parts, about the centre of mass;
   /// `point`, if given, is where the force acts, in `frame`. False if the frame cannot be resolved.
   bool toAppliedWrench(std::size_t body, const geometry_msgs::Wrench& wrench, const std::string& frame,
