@@ -1,5 +1,5 @@
 // Cost of a scene of N bodies per body and step (Google Benchmark), N = 1 … 10 000. Not a test: run by
-// scripts/benchmark.sh. The per-body time must stay flat in N (a cost linear in the bodies): the Simulation
+// scripts/benchmark.sh. The per-body time must stay flat in N (a cost linear in the bodies): the Scene
 // keeps each field of the bodies in one contiguous array and steps them body by body, with no allocation
 // and no virtual call in the loop.
 //
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "rigid_body_sim/kinematics.hpp"
-#include "rigid_body_sim/simulation.hpp"
+#include "rigid_body_sim/scene.hpp"
 
 namespace {
 
@@ -18,7 +18,7 @@ using namespace rigid_body;
 
 constexpr std::int64_t kStepsPerTick = 10;
 
-Simulation swarm(std::size_t bodies, IntegratorType type) {
+Scene swarm(std::size_t bodies, IntegratorType type) {
   const MassProperties shapes[] = {MassProperties::box(1.0, Eigen::Vector3d(0.4, 0.2, 0.1)),
                                    MassProperties::sphere(1.0, 0.15), MassProperties::cylinder(1.0, 0.1, 0.4)};
   std::vector<BodyDefinition> definitions;
@@ -30,7 +30,7 @@ Simulation swarm(std::size_t bodies, IntegratorType type) {
         Eigen::Vector3d(0.1, 0.2, 0.1 * static_cast<double>(i % 5)));
     definitions.push_back({Model{mass, ForceModel{}}, initial, i % 2 == 0});
   }
-  Simulation simulation(definitions, type, 0.001, 1000);
+  Scene simulation(definitions, type, 0.001);
   AppliedWrench push;
   push.world.force = Eigen::Vector3d(0.1, 0.0, 0.0);
   push.body.torque = Eigen::Vector3d(0.0, 0.0, 0.001);
@@ -40,9 +40,9 @@ Simulation swarm(std::size_t bodies, IntegratorType type) {
 
 void stepScene(benchmark::State& bench, IntegratorType type) {
   const auto bodies = static_cast<std::size_t>(bench.range(0));
-  Simulation simulation = swarm(bodies, type);
+  Scene simulation = swarm(bodies, type);
   for (auto _ : bench) {
-    simulation.stepNow(kStepsPerTick);
+    simulation.step(kStepsPerTick);
     benchmark::DoNotOptimize(simulation.state(bodies - 1));
   }
   // ns per body and step: the number that must stay flat in N.

@@ -2,27 +2,9 @@
 
 namespace rigid_body {
 
-Eigen::Vector3d applyWorldInverseInertia(const MassProperties& mass, const Eigen::Matrix3d& R_WB,
-                                         const Eigen::Vector3d& v_W) {
-  if (mass.isIsotropic()) return mass.inverseInertia()(0, 0) * v_W;  // the same in every axes
-  return R_WB * (mass.inverseInertia() * (R_WB.transpose() * v_W));
-}
+Eigen::Vector3d linearVelocity(const MassProperties& mass, const State& state) { return mass.inverseMass() * state.P_W; }
 
-Motion motionOf(const MassProperties& mass, const State& state) {
-  Motion motion;
-  motion.R_WB = state.q_WB.normalized().toRotationMatrix();
-  motion.v_WB_W = mass.inverseMass() * state.P_W;
-  motion.w_WB_W = applyWorldInverseInertia(mass, motion.R_WB, state.L_W);
-  return motion;
-}
-
-Eigen::Vector3d linearVelocity(const MassProperties& mass, const State& state) {
-  return mass.inverseMass() * state.P_W;
-}
-
-Eigen::Vector3d angularVelocity(const MassProperties& mass, const State& state) {
-  return motionOf(mass, state).w_WB_W;
-}
+Eigen::Vector3d angularVelocity(const MassProperties& mass, const State& state) { return motionOf(mass, state).w_WB_W; }
 
 double kineticEnergy(const MassProperties& mass, const State& state) {
   const Motion motion = motionOf(mass, state);

@@ -149,5 +149,21 @@ Eigen::Quaterniond TorqueFreeBody::orientation(double t) const {
   return flipped_ ? Eigen::Quaterniond(relabelled * kFlip) : relabelled;
 }
 
+const Eigen::Quaterniond& testOrientation() {
+  static const Eigen::Quaterniond q0(Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()));
+  return q0;
+}
+
+Model principalBody(const Eigen::Vector3d& moments, double mass, InertiaCheck check) {
+  return Model{MassProperties::fromInertia(mass, moments.asDiagonal().toDenseMatrix(), check), ForceModel{}};
+}
+
+State torqueFreeStart(const Eigen::Vector3d& m0_B, const Eigen::Quaterniond& q0) {
+  State state;
+  state.q_WB = q0;
+  state.L_W = q0 * m0_B;
+  return state;
+}
+
 }  // namespace reference
 }  // namespace rigid_body

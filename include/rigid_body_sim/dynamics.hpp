@@ -1,6 +1,8 @@
 // The Newton–Euler right-hand side Ẏ = f(Y, u) of the state-space form:
 //   ẋ = v = P/M,   q̇ = ½ [0, ω] ⊗ q,   Ṗ = F,   L̇ = τ,   with ω = R I_Bcm_B⁻¹ Rᵀ L.
 // (Baraff & Witkin, "Physically Based Modeling", rigid body dynamics, eqs. 2-43 and 4-2.)
+// Every function takes the body's constant Model and the StepTerms assembled beside it: a term left out
+// is not evaluated at all (see step_terms.hpp).
 #pragma once
 
 #include <Eigen/Core>
@@ -14,20 +16,12 @@
 
 namespace rigid_body {
 
-/// The constant description of one body: its mass properties, the force models acting on it and the terms
-/// its step evaluates (every term unless the scene assembled fewer: assembleTerms).
+/// The constant description of one body: its mass properties and the force models acting on it. Set once
+/// when the scene is made; what a step evaluates of it is the StepTerms kept beside it.
 struct Model {
   MassProperties mass;
   ForceModel forces;
-  StepTerms terms = StepTerms::all();
 };
-
-/// The motion of a body at one instant as its step needs it: R only when the step uses it (rotation or a
-/// body-fixed input), ω through the isotropic shortcut when the terms say so.
-Motion motionOf(const Model& model, const State& state);
-
-/// I⁻¹(t) v as the model's terms assemble it: R(I_Bcm_B⁻¹(Rᵀ v)), or v/I₀ for an isotropic body.
-Eigen::Vector3d applyWorldInverseInertia(const Model& model, const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& v_W);
 
 /// Ẏ, with the quaternion rate as Eigen's coefficient order (x, y, z, w).
 struct Derivative {
@@ -40,58 +34,37 @@ struct Derivative {
 
 /// The wrench that does not depend on the velocities, about the centre of mass in world axes: the applied
 /// input (world part plus the body part turned by R_WB) and gravity M g, each only if its term is assembled.
-Wrench externalWrench(const Model& model, const Eigen::Matrix3d& R_WB, const AppliedWrench& input);
+Wrench externalWrench(const Model& model, const StepTerms& terms, const Eigen::Matrix3d& R_WB,
+                      const AppliedWrench& input);
 
 /// Total wrench about the centre of mass in world axes: externalWrench plus damping −c v, −c_ω ω (as assembled).
-Wrench totalWrench(const Model& model, const Motion& motion, const AppliedWrench& input);
+Wrench totalWrench(const Model& model, const StepTerms& terms, const Motion& motion, const AppliedWrench& input);
 
 /// q̇ = ½ [0, ω] ⊗ q for a world-axes ω, as coefficients (x, y, z, w).
 Eigen::Vector4d quaternionRate(const Eigen::Vector3d& w_WB_W, const Eigen::Quaterniond& q_WB);
 
 /// Ẏ = f(Y, u).
-Derivative derivative(const Model& model, const State& state, const AppliedWrench& input);
+Derivative derivative(const Model& model, const StepTerms& terms, const State& state, const AppliedWrench& input);
 
 // ---------------------------------------------------------------------------------------------------------
 // Definitions: inline, since they are the hot step of every integrator (a call per stage otherwise).
 
-inline Eigen::Vector3d applyWorldInverseInertia(const Model& model, const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& v_W) {
-  if (!model.terms.world_inertia) return model.mass.inverseInertia()(0, 0) * v_W;  // isotropic: any axes
-  return R_WB * (model.mass.inverseInertia() * (R_WB.transpose() * v_W));
-}
-
-inline Motion motionOf(const Model& model, const State& state) {
-  Motion motion;
-  const StepTerms& terms = model.terms;
-  // R of the unnormalised stage quaternion (rotationMatrix scales by 1/|q|², no square root); not formed when
-  // nothing uses it (no rotation and no input to turn).
-  if (terms.rotation || terms.input) {
-    motion.R_WB = rotationMatrix(state.q_WB);
-  } else {
-    motion.R_WB.setIdentity();
-  }
-  motion.v_WB_W = model.mass.inverseMass() * state.P_W;
-  if (terms.rotation) {
-    motion.w_WB_W = applyWorldInverseInertia(model, motion.R_WB, state.L_W);
-  } else {
-    motion.w_WB_W.setZero();
-  }
-  return motion;
-}
-
-inline Wrench externalWrench(const Model& model, const Eigen::Matrix3d& R_WB, const AppliedWrench& input) {
+inline Wrench externalWrench(const Model& model, const StepTerms& terms, const Eigen::Matrix3d& R_WB,
+                             const AppliedWrench& input) {
   Wrench external;
-  if (model.terms.input) {
+  if (terms.input) {
     external.force = input.world.force + R_WB * input.body.force;
     external.torque = input.world.torque + R_WB * input.body.torque;
   }
-  if (model.terms.gravity) external.force += model.mass.mass() * model.forces.gravity_W;
+  if (terms.gravity) external.force += model.mass.mass() * model.forces.gravity_W;
   return external;
 }
 
-inline Wrench totalWrench(const Model& model, const Motion& motion, const AppliedWrench& input) {
-  Wrench total = externalWrench(model, motion.R_WB, input);
-  if (model.terms.linear_damping) total.force -= model.forces.linear_damping * motion.v_WB_W;
-  if (model.terms.angular_damping) total.torque -= model.forces.angular_damping * motion.w_WB_W;
+inline Wrench totalWrench(const Model& model, const StepTerms& terms, const Motion& motion,
+                          const AppliedWrench& input) {
+  Wrench total = externalWrench(model, terms, motion.R_WB, input);
+  if (terms.linear_damping) total.force -= model.forces.linear_damping * motion.v_WB_W;
+  if (terms.angular_damping) total.torque -= model.forces.angular_damping * motion.w_WB_W;
   return total;
 }
 
@@ -100,14 +73,15 @@ inline Eigen::Vector4d quaternionRate(const Eigen::Vector3d& w_WB_W, const Eigen
   return 0.5 * (omega * q_WB).coeffs();
 }
 
-inline Derivative derivative(const Model& model, const State& state, const AppliedWrench& input) {
-  const Motion motion = motionOf(model, state);
-  const Wrench wrench = totalWrench(model, motion, input);
+inline Derivative derivative(const Model& model, const StepTerms& terms, const State& state,
+                             const AppliedWrench& input) {
+  const Motion motion = motionOf(model.mass, state, terms);
+  const Wrench wrench = totalWrench(model, terms, motion, input);
   Derivative rate;
   rate.p_dot = motion.v_WB_W;
   rate.P_dot = wrench.force;
   rate.w_WB_W = motion.w_WB_W;
-  if (model.terms.rotation) {
+  if (terms.rotation) {
     rate.q_dot = quaternionRate(motion.w_WB_W, state.q_WB);
     rate.L_dot = wrench.torque;
   } else {

@@ -11,10 +11,12 @@
 #include "rigid_body_sim/dynamics.hpp"
 #include "rigid_body_sim/forces.hpp"
 #include "rigid_body_sim/state.hpp"
+#include "rigid_body_sim/step_terms.hpp"
 
 namespace rigid_body {
 
-/// The available methods. Add a method here, in kIntegratorNames and in Integrator::doStep's switch.
+/// The available methods. A new method goes here, in the registry table of integrators.cpp (name, order,
+/// summary) and in Integrator::doStep's switch.
 enum class IntegratorType {
   kExplicitEuler,        ///< Y ← Y + h f(Y), then q normalised. Order 1.
   kSemiImplicitEuler,    ///< momenta first, then x with the new v and q ← exp(ω h) ⊗ q. Order 1.
@@ -25,6 +27,17 @@ enum class IntegratorType {
   kImplicitMidpoint,     ///< midpoint rule on body momentum, Cayley rotation (Lie–Poisson). Order 2.
   kDopri5,               ///< Dormand–Prince 5(4), error control and dense output. Order 5.
 };
+
+/// One row of the registry: everything the node, the report and the documentation say about a method.
+struct IntegratorInfo {
+  IntegratorType type;
+  const char* name;     ///< the parameter value, e.g. "rk4"
+  int order;            ///< nominal order of accuracy: the global error is O(h^order)
+  const char* summary;  ///< one line for tables and logs
+};
+
+/// The registry, in the order of the documentation.
+const std::vector<IntegratorInfo>& integratorRegistry();
 
 /// Every method, in the order of the documentation.
 const std::vector<IntegratorType>& allIntegrators();
@@ -79,12 +92,17 @@ class Integrator {
   const IntegratorSettings& settings() const { return settings_; }
   const IntegratorStatistics& statistics() const { return statistics_; }
 
-  /// Advances `state` by h ≥ 0 [s] under `input`, held constant over the step. h = 0 leaves it as it is.
-  StepStatus step(const Model& model, const AppliedWrench& input, double h, State& state);
+  /// Advances `state` by h ≥ 0 [s] under `input`, held constant over the step, evaluating the assembled
+  /// `terms` only. h = 0 leaves it as it is.
+  StepStatus step(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h, State& state);
+  /// The general step: every term (StepTerms::all()).
+  StepStatus step(const Model& model, const AppliedWrench& input, double h, State& state) {
+    return step(model, StepTerms::all(), input, h, state);
+  }
 
  private:
-  StepStatus doStep(const Model& model, const AppliedWrench& input, double h, State& state);
-  StepStatus dopri5Step(const Model& model, const AppliedWrench& input, double h, State& state);
+  StepStatus doStep(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h, State& state);
+  StepStatus dopri5Step(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h, State& state);
 
   IntegratorType type_;
   IntegratorSettings settings_;

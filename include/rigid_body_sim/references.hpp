@@ -6,6 +6,10 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "rigid_body_sim/dynamics.hpp"
+#include "rigid_body_sim/mass_properties.hpp"
+#include "rigid_body_sim/state.hpp"
+
 namespace rigid_body {
 namespace reference {
 
@@ -81,6 +85,21 @@ class TorqueFreeBody {
   double nu_;                // phase ν = F(φ₀|k²)
   Eigen::Quaterniond Q0_;    // R₀' P(0)ᵀ in the relabelled frame
 };
+
+// ---------------------------------------------------------------------------------------------------------
+// The test bodies the tests and the accuracy report share, so that a scene means the same in both.
+
+/// The initial orientation of the torque-free test scenes: 0.4 rad about (1, 2, 3)/√14, so that no body
+/// axis starts along a world axis.
+const Eigen::Quaterniond& testOrientation();
+
+/// A body of `mass` [kg] whose principal axes are its body axes, I = diag(moments) [kg m²], no forces.
+/// `check` is InertiaCheck::kPositiveDefiniteOnly only for the published test bodies that break the
+/// triangle inequality (Principia's I = (3, 3, 9) and (3, 5, 9)).
+Model principalBody(const Eigen::Vector3d& moments, double mass = 1.0, InertiaCheck check = InertiaCheck::kPhysical);
+
+/// At the origin, at rest, turned by q0 (testOrientation() by default), with body angular momentum m0_B.
+State torqueFreeStart(const Eigen::Vector3d& m0_B, const Eigen::Quaterniond& q0 = testOrientation());
 
 }  // namespace reference
 }  // namespace rigid_body

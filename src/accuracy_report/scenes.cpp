@@ -13,20 +13,12 @@ using namespace rigid_body;
 
 namespace {
 
-const Eigen::Quaterniond kQ0(Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()));
+using reference::torqueFreeStart;
+const Eigen::Quaterniond& kQ0 = reference::testOrientation();
 
 // Exempt from the triangle inequality: the report uses Principia's published top I = (3, 3, 9).
 Model principalBody(const Eigen::Vector3d& moments) {
-  return Model{MassProperties::fromInertia(1.0, moments.asDiagonal().toDenseMatrix(),
-                                           InertiaCheck::kPositiveDefiniteOnly),
-               ForceModel{}};
-}
-
-State torqueFreeStart(const Eigen::Vector3d& m0_B) {
-  State state;
-  state.q_WB = kQ0;
-  state.L_W = kQ0 * m0_B;
-  return state;
+  return reference::principalBody(moments, 1.0, InertiaCheck::kPositiveDefiniteOnly);
 }
 
 Scene torqueFreeScene(const std::string& name, const std::string& description, const Eigen::Vector3d& I,

@@ -14,23 +14,15 @@ using namespace rigid_body;
 
 namespace {
 
-const Eigen::Quaterniond kQ0(Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()));
+using reference::torqueFreeStart;
+const Eigen::Quaterniond& kQ0 = reference::testOrientation();
 
 // Max stable step (REFERENCES §3.2): no NaN, finite q and |ΔE/E| < 10 % over a fixed number of steps.
 constexpr double kStableEnergyChange = 0.1;
 
 // Exempt from the triangle inequality: the suite uses Principia's published body I = (3, 5, 9).
 Model principalBody(const Eigen::Vector3d& moments, double mass = 1.0) {
-  return Model{MassProperties::fromInertia(mass, moments.asDiagonal().toDenseMatrix(),
-                                           InertiaCheck::kPositiveDefiniteOnly),
-               ForceModel{}};
-}
-
-State torqueFreeStart(const Eigen::Vector3d& m0_B, const Eigen::Quaterniond& q0 = kQ0) {
-  State state;
-  state.q_WB = q0;
-  state.L_W = q0 * m0_B;
-  return state;
+  return reference::principalBody(moments, mass, InertiaCheck::kPositiveDefiniteOnly);
 }
 
 bool isSplitting(IntegratorType type) { return type == IntegratorType::kSymplecticSplitting; }

@@ -22,11 +22,14 @@ rigid_body::Wrench toWrench(const geometry_msgs::Wrench& wrench) {
   return result;
 }
 
-rigid_body::Wrench wrenchInWorld(const geometry_msgs::Wrench& wrench_F, const Eigen::Isometry3d& X_WF,
-                                 const Eigen::Vector3d& p_WB, const Eigen::Vector3d* p_FQ) {
+WrenchAtPoint wrenchAtPointInWorld(const geometry_msgs::Wrench& wrench_F, const Eigen::Isometry3d& X_WF,
+                                   const Eigen::Vector3d* p_FQ) {
   const rigid_body::Wrench in_F = toWrench(wrench_F);
-  const Eigen::Vector3d p_WQ = p_FQ ? Eigen::Vector3d(X_WF * *p_FQ) : Eigen::Vector3d(X_WF.translation());
-  return rigid_body::wrenchAboutCentreOfMass(X_WF.linear() * in_F.force, X_WF.linear() * in_F.torque, p_WQ, p_WB);
+  WrenchAtPoint result;
+  result.wrench_W.force = X_WF.linear() * in_F.force;
+  result.wrench_W.torque = X_WF.linear() * in_F.torque;
+  result.p_WQ = p_FQ ? Eigen::Vector3d(X_WF * *p_FQ) : Eigen::Vector3d(X_WF.translation());
+  return result;
 }
 
 void fillOdometry(const rigid_body::MassProperties& mass, const rigid_body::State& state, nav_msgs::Odometry& odom) {

@@ -25,6 +25,10 @@ using XmlRpc::XmlRpcValue;
 
 // The largest rate the timer is asked for; beyond it a ROS timer cannot keep its period anyway.
 constexpr double kMaxRate = 10000.0;
+// The smallest physics step [s]: a million steps per simulated second.
+constexpr double kMinDt = 1e-6;
+// The longest noise/delay [s]: the delay queue holds delay × rate messages.
+constexpr double kMaxNoiseDelay = 3600.0;
 // A hand-typed quaternion such as [0, 0, 0.7071, 0.7071] is accepted and normalised if |q| is this close to 1.
 constexpr double kQuaternionNormTolerance = 1e-3;
 
@@ -33,7 +37,8 @@ const std::set<std::string> kBodyNames = {
     "name", "body_frame", "mass", "shape", "size", "inertia", "initial", "linear_damping", "angular_damping",
     "mesh", "scale", "density", "inertia_method", "samples", "principal_axes", "mesh_frame", "wrench_input"};
 const std::set<std::string> kSceneNames = {
-    "rate", "dt", "integrator", "world_frame", "gravity", "bodies", "wrench_timeout", "max_substeps", "publish_tf",
+    "rate", "dt", "integrator", "world_frame", "gravity", "bodies", "wrench_timeout", "max_substeps",
+    "max_body_steps_per_tick", "max_body_steps_per_request", "publish_tf",
     "publish", "abs_tolerance", "rel_tolerance", "max_force", "max_torque", "max_energy_growth", "lockstep",
     "real_time_factor", "start_paused", "noise"};
 const std::set<std::string> kPublishNames = {"tf", "odom", "state", "applied_wrench"};
@@ -404,6 +409,8 @@ NodeConfig parseConfig(const XmlRpcValue& params) {
   dt_allowed << "must be a finite number in (0, 1/rate = " << max_dt << "] [s]";
   config.dt = readNumber(params, "dt", config.dt, [max_dt](double dt) { return dt > 0.0 && dt <= max_dt * (1 + 1e-12); },
                          dt_allowed.str());
+  // The clock counts nanoseconds and a tick must stay a bounded amount of work: no step below a microsecond.
+  if (config.dt < kMinDt) fail("dt", *find(params, "dt"), "must be >= 1e-6 [s] (at most a million steps per second)");
   const std::string integrator_allowed = "must be one of: " + rigid_body::integratorNameList();
   const std::string integrator = readString(params, "integrator", "rk4", integrator_allowed);
   try {
@@ -438,6 +445,12 @@ NodeConfig parseConfig(const XmlRpcValue& params) {
                                         "must be a finite number > 1 (energy factor per tick)");
   config.max_substeps = readInteger(params, "max_substeps", static_cast<int>(config.max_substeps), 1,
                                     "must be an integer >= 1");
+  config.max_body_steps_per_tick =
+      readInteger(params, "max_body_steps_per_tick", static_cast<int>(config.max_body_steps_per_tick), 1,
+                  "must be an integer >= 1 (steps x bodies one tick may integrate)");
+  config.max_body_steps_per_request =
+      readInteger(params, "max_body_steps_per_request", static_cast<int>(config.max_body_steps_per_request), 1,
+                  "must be an integer >= 1 (steps x bodies one step request may ask for)");
   // publish_tf is the older spelling of publish/tf; publish/tf wins when both are set.
   config.publish.tf = readBool(params, "publish/tf", readBool(params, "publish_tf", true));
   config.publish.odom = readBool(params, "publish/odom", true);
@@ -456,7 +469,8 @@ NodeConfig parseConfig(const XmlRpcValue& params) {
   config.noise.orientation_stddev = readStddev("orientation_stddev", "[rad]");
   config.noise.linear_velocity_stddev = readStddev("linear_velocity_stddev", "[m/s]");
   config.noise.angular_velocity_stddev = readStddev("angular_velocity_stddev", "[rad/s]");
-  config.noise.delay = readNumber(params, "noise/delay", 0.0, [](double d) { return d >= 0.0; }, "must be a finite number >= 0 [s]");
+  config.noise.delay = readNumber(params, "noise/delay", 0.0, [](double d) { return d >= 0.0 && d <= kMaxNoiseDelay; },
+                                  "must be a finite number in [0, 3600] [s]");
   config.noise.seed = readInteger(params, "noise/seed", config.noise.seed, std::numeric_limits<int>::min(),
                                   "must be an integer");
   std::set<std::string> top_level = kSceneNames;

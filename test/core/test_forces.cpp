@@ -39,7 +39,7 @@ TEST(Forces, TotalWrenchSumsInputGravityAndDamping) {
   input.world.force = Eigen::Vector3d(1.0, 0.0, 0.0);
   input.body.force = Eigen::Vector3d(1.0, 0.0, 0.0);   // world +y after the 90° yaw
   input.body.torque = Eigen::Vector3d(0.0, 0.0, 3.0);  // the yaw axis is shared by body and world
-  const Wrench total = totalWrench(model, motionOf(model.mass, state), input);
+  const Wrench total = totalWrench(model, StepTerms::all(), motionOf(model.mass, state), input);
   // F = (1,0,0) + (0,1,0) + 2·(0,0,−9.81) − 0.5·(1,0,0)
   EXPECT_TRUE(total.force.isApprox(Eigen::Vector3d(0.5, 1.0, -19.62), 1e-14));
   // τ = (0,0,3) − 0.25·(0,0,4)
@@ -68,12 +68,15 @@ TEST(Kinematics, WorldInverseInertiaIsTheGeneralFormulaAndTheIsotropicShortcutAg
   const MassProperties box = MassProperties::box(2.0, Eigen::Vector3d(0.4, 0.2, 0.1));
   EXPECT_FALSE(box.isIsotropic());
   const Eigen::Matrix3d I_W = R * box.inertia() * R.transpose();
-  EXPECT_TRUE(applyWorldInverseInertia(box, R, L).isApprox(I_W.inverse() * L, 1e-13));
+  EXPECT_TRUE(applyWorldInverseInertia(box, StepTerms::all(), R, L).isApprox(I_W.inverse() * L, 1e-13));
   // The sphere takes the shortcut ω = L/I₀; the general path gives the same to rounding.
   const MassProperties sphere = MassProperties::sphere(2.0, 0.3);
   ASSERT_TRUE(sphere.isIsotropic());
   const Eigen::Vector3d general = R * (sphere.inverseInertia() * (R.transpose() * L));
-  EXPECT_TRUE(applyWorldInverseInertia(sphere, R, L).isApprox(general, 1e-15));
+  StepTerms isotropic = StepTerms::all();
+  isotropic.world_inertia = assembleTerms(sphere, ForceModel{}, State(), true).world_inertia;
+  ASSERT_FALSE(isotropic.world_inertia);
+  EXPECT_TRUE(applyWorldInverseInertia(sphere, isotropic, R, L).isApprox(general, 1e-15));
   // Nearly isotropic is not isotropic: no shortcut.
   EXPECT_FALSE(MassProperties::fromInertia(1.0, Eigen::Vector3d(1.0, 1.0, 1.0 + 1e-9).asDiagonal().toDenseMatrix())
                    .isIsotropic());

@@ -15,18 +15,9 @@ using namespace rigid_body;
 
 namespace {
 
-const Eigen::Quaterniond kQ0(Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()));
-
-Model principalBody(const Eigen::Vector3d& moments) {
-  return Model{MassProperties::fromInertia(1.0, moments.asDiagonal().toDenseMatrix()), ForceModel{}};
-}
-
-State torqueFreeStart(const Eigen::Vector3d& m0_B) {
-  State state;
-  state.q_WB = kQ0;
-  state.L_W = kQ0 * m0_B;
-  return state;
-}
+using reference::principalBody;
+using reference::torqueFreeStart;
+const Eigen::Quaterniond& kQ0 = reference::testOrientation();
 
 // Runs `steps` steps of h from `state`; the integrator is the caller's so its statistics can be read.
 void run(Integrator& integrator, const Model& model, double h, long steps, State& state) {

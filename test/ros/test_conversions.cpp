@@ -39,6 +39,12 @@ TEST(Conversions, WrenchInAnotherFrameGetsRotatedAndTheMomentArm) {
   geometry_msgs::Wrench wrench_F;
   wrench_F.force.x = 2.0;  // (0, 2, 0) in W
   wrench_F.torque.z = 0.5;
+  // The core moves a wrench at a point to the centre of mass as τ = τ_Q + (p_WQ − x) × F_W.
+  const auto wrenchInWorld = [](const geometry_msgs::Wrench& w, const Eigen::Isometry3d& X, const Eigen::Vector3d& p_WB,
+                                const Eigen::Vector3d* p_FQ = nullptr) {
+    const WrenchAtPoint at = wrenchAtPointInWorld(w, X, p_FQ);
+    return rigid_body::wrenchAboutCentreOfMass(at.wrench_W.force, at.wrench_W.torque, at.p_WQ, p_WB);
+  };
   const rigid_body::Wrench in_W = wrenchInWorld(wrench_F, X_WF, Eigen::Vector3d::Zero());
   EXPECT_TRUE(in_W.force.isApprox(Eigen::Vector3d(0.0, 2.0, 0.0), 1e-15));
   // τ = (0, 0, 0.5) + (1, 0, 0) × (0, 2, 0) = (0, 0, 2.5)

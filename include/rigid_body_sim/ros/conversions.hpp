@@ -28,11 +28,17 @@ WrenchFrame classifyWrenchFrame(const std::string& frame_id, const std::string& 
 /// The message's force and torque as they are (no change of axes).
 rigid_body::Wrench toWrench(const geometry_msgs::Wrench& wrench);
 
-/// A wrench given in frame F (force and torque in F's axes) in world axes about the centre of mass:
-/// F_W = R_WF F_F, τ_W = R_WF τ_F + (p_WQ − p_WB) × F_W, where Q is the point the force acts at: `p_FQ`
-/// (in F's coordinates) if given, else F's origin.
-rigid_body::Wrench wrenchInWorld(const geometry_msgs::Wrench& wrench_F, const Eigen::Isometry3d& X_WF,
-                                 const Eigen::Vector3d& p_WB, const Eigen::Vector3d* p_FQ = nullptr);
+/// A wrench in world axes about a world point Q, as the core takes it (World::setWrench moves it to the
+/// centre of mass at the step it acts: τ = τ_Q + (p_WQ − x) × F_W).
+struct WrenchAtPoint {
+  rigid_body::Wrench wrench_W;  ///< F_W [N] and τ_Q [N m] about Q, world axes
+  Eigen::Vector3d p_WQ;         ///< Q in W [m]
+};
+
+/// A wrench given in frame F (force and torque in F's axes) in world axes: F_W = R_WF F_F, τ_Q = R_WF τ_F,
+/// where Q is the point the force acts at: `p_FQ` (in F's coordinates) if given, else F's origin.
+WrenchAtPoint wrenchAtPointInWorld(const geometry_msgs::Wrench& wrench_F, const Eigen::Isometry3d& X_WF,
+                                   const Eigen::Vector3d* p_FQ = nullptr);
 
 /// Pose and twist of an Odometry message (REP 105): pose of the body in the world frame, twist (linear
 /// velocity of the origin of the body frame and angular velocity) in the body frame: v_B = Rᵀ v_W, ω_B = Rᵀ ω_W.

@@ -83,7 +83,9 @@ struct NodeConfig {
   double wrench_timeout = 0.0;       ///< [s]; 0: a wrench holds until the next one
   rigid_body::WrenchLimits wrench_limits;  ///< max_force [N], max_torque [N m]; infinite when not set
   double max_energy_growth = 2.0;    ///< divergence guard: energy factor per tick with no wrench commanded
-  std::int64_t max_substeps = 1000;  ///< steps one tick may integrate; the rest is dropped and counted
+  std::int64_t max_substeps = 1000;  ///< steps one tick may integrate per body; the rest is dropped and counted
+  std::int64_t max_body_steps_per_tick = 2000000;     ///< the same cap in body-steps (steps × bodies) per tick
+  std::int64_t max_body_steps_per_request = 2000000;  ///< the most body-steps one step request may ask for
   PublishConfig publish;
   bool lockstep = false;          ///< the node owns simulated time and publishes /clock
   double real_time_factor = 1.0;  ///< lockstep pace: simulated seconds per wall second; 0 = as fast as possible

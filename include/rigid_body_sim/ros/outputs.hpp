@@ -1,0 +1,70 @@
+// The state out: per body NAME/odom, NAME/state, NAME/applied_wrench and NAME/odom_noisy, every body's
+// transform in one tf message per tick, /clock in lockstep, the static mesh frames. Only enabled outputs
+// have a publisher, and an output nobody listens to is not even filled (roscpp finds a publication by a
+// linear search over every advertised topic, so 1000 bodies' unheard odometry alone cost O(N²) a tick).
+// Constant fields (frame ids, covariances) are filled once; a message with a non-finite field is never sent.
+#pragma once
+
+#include <geometry_msgs/TransformStamped.h>
+#include <geometry_msgs/WrenchStamped.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+#include <tf2_ros/static_transform_broadcaster.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "rigid_body_sim/RigidBodyState.h"
+#include "rigid_body_sim/ros/odometry_noise.hpp"
+#include "rigid_body_sim/ros/parameters.hpp"
+#include "rigid_body_sim/world.hpp"
+
+namespace rigid_body_ros {
+
+class Outputs {
+ public:
+  Outputs(ros::NodeHandle& nh, const NodeConfig& config);
+
+  /// The static tf body_frame → mesh_frame of the bodies that have one.
+  void publishMeshFrames(const ros::Time& stamp);
+  /// Every body's enabled outputs, stamped with the world's stamp.
+  void publish(const rigid_body::World& world);
+  /// /clock at the world's stamp (lockstep).
+  void publishClock(const rigid_body::World& world);
+
+  /// Messages withheld because a field was not finite (e.g. a kinetic energy that overflowed).
+  std::uint64_t withheld() const { return withheld_; }
+  /// Largest ||q| − 1| published for a body since the last reset.
+  double maxNormError(std::size_t body) const { return channels_[body].max_norm_error; }
+
+ private:
+  struct Channel {
+    ros::Publisher odom;
+    ros::Publisher state;
+    ros::Publisher applied_wrench;
+    std::unique_ptr<OdometryNoise> noise;  ///< only with noise
+    int odom_subscribers = 0;
+    int state_subscribers = 0;
+    int applied_wrench_subscribers = 0;
+    double max_norm_error = 0.0;
+    nav_msgs::Odometry odom_message;
+    rigid_body_sim::RigidBodyState state_message;
+    geometry_msgs::WrenchStamped applied_wrench_message;
+  };
+
+  void advertise(ros::NodeHandle& nh, std::size_t body, uint32_t queue);
+  void publishBody(const rigid_body::World& world, std::size_t body, const ros::Time& stamp);
+
+  const NodeConfig& config_;
+  std::vector<Channel> channels_;  ///< sized once: the subscriber-count callbacks hold indices into it
+  tf2_ros::TransformBroadcaster tf_broadcaster_;
+  std::unique_ptr<tf2_ros::StaticTransformBroadcaster> mesh_frame_broadcaster_;
+  std::vector<geometry_msgs::TransformStamped> transforms_;  ///< one per body when tf is published
+  ros::Publisher clock_publisher_;                             ///< lockstep only
+  std::uint64_t withheld_ = 0;
+  std::uint64_t resets_seen_ = 0;  ///< the World's reset count when max_norm_error was last cleared
+};
+
+}  // namespace rigid_body_ros

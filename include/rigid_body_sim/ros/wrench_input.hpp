@@ -1,0 +1,75 @@
+// Wrench messages into core commands: limits and finiteness checked (rejections counted by reason, warned
+// at most every few seconds), the frame resolved through tf2 once, at arrival, and the result handed to the
+// World stamped with its arrival. Owns the per-body wrench subscribers and the tf2 listener. A tf2 lookup
+// never waits: the transform at the message's stamp if tf2 has it, else the latest one, else the wrench is
+// refused at once (a callback that waited would hold up the timer on the node's single spinner thread).
+#pragma once
+
+#include <geometry_msgs/Wrench.h>
+#include <geometry_msgs/WrenchStamped.h>
+#include <ros/ros.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "rigid_body_sim/ros/parameters.hpp"
+#include "rigid_body_sim/world.hpp"
+
+namespace rigid_body_ros {
+
+/// Wrenches refused before they reached the core, by reason.
+struct WrenchRejections {
+  std::uint64_t non_finite = 0;      ///< a NaN or Inf component, or a frame change that overflowed
+  std::uint64_t force_limit = 0;     ///< |F| above max_force
+  std::uint64_t torque_limit = 0;    ///< |τ| above max_torque
+  std::uint64_t unknown_frame = 0;   ///< a frame tf2 could not resolve
+  std::uint64_t refused_by_core = 0; ///< the World refused the command (queue full, body without input)
+  std::uint64_t total() const { return non_finite + force_limit + torque_limit + unknown_frame + refused_by_core; }
+};
+
+/// A message wrench in the core's terms: body- or world-fixed parts, and for a world-held wrench the point
+/// its torque is about.
+struct ConvertedWrench {
+  rigid_body::AppliedWrench wrench;
+  bool has_point = false;
+  Eigen::Vector3d p_WQ = Eigen::Vector3d::Zero();
+};
+
+class WrenchInput {
+ public:
+  /// `now` gives the arrival time of a message on the node's clock.
+  WrenchInput(ros::NodeHandle& nh, const NodeConfig& config, rigid_body::World& world,
+              std::function<rigid_body::Nanoseconds()> now);
+
+  /// Limits and finiteness of a wrench as sent (magnitudes are the same in any axes); counts and warns.
+  bool accept(const geometry_msgs::Wrench& wrench);
+  /// Resolves `frame` (world, body, or any tf2 frame; a leading '/' is dropped) for `body`; `point`, if
+  /// given, is where the force acts, in `frame`. False (counted, warned) if the frame is unknown or the
+  /// change of frame overflows.
+  bool convert(std::size_t body, const geometry_msgs::Wrench& wrench, const std::string& frame, const ros::Time& stamp,
+               const Eigen::Vector3d* point, ConvertedWrench& out);
+
+  const WrenchRejections& rejections() const { return rejections_; }
+
+ private:
+  void onWrench(std::size_t body, const geometry_msgs::WrenchStamped& message);
+  void onWrenchUnstamped(std::size_t body, const geometry_msgs::Wrench& message);
+  void submit(std::size_t body, const ConvertedWrench& converted);
+  void warnUnknownFrame(const std::string& frame, const std::string& error);
+
+  const NodeConfig& config_;
+  rigid_body::World& world_;
+  std::function<rigid_body::Nanoseconds()> now_;
+  WrenchRejections rejections_;
+  tf2_ros::Buffer tf_buffer_;
+  tf2_ros::TransformListener tf_listener_;
+  std::vector<ros::Subscriber> subscribers_;
+  std::map<std::string, ros::WallTime> last_frame_warning_;  ///< per unknown frame (bounded)
+};
+
+}  // namespace rigid_body_ros

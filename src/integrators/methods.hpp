@@ -1,0 +1,24 @@
+// The one-step maps of the methods that are not a plain Runge–Kutta tableau, one family per source file:
+// lie_euler.cpp (semi-implicit Euler, Buss) and splitting.cpp (symplectic splitting, implicit midpoint).
+// dopri5 lives in dopri5.cpp, as Integrator's member (it keeps memory between calls).
+// Internal to the integrators (not installed).
+#pragma once
+
+#include <cstdint>
+
+#include "rigid_body_sim/dynamics.hpp"
+#include "rigid_body_sim/integrators.hpp"
+
+namespace rigid_body {
+namespace integrators {
+
+State semiImplicitEulerStep(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h,
+                            const State& y);
+State bussStep(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h, const State& y);
+StepStatus symplecticSplittingStep(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h,
+                                   State& s);
+StepStatus implicitMidpointStep(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h,
+                                const IntegratorSettings& settings, std::uint64_t& newton_iterations, State& s);
+
+}  // namespace integrators
+}  // namespace rigid_body

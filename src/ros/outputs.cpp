@@ -1,0 +1,156 @@
+#include "rigid_body_sim/ros/outputs.hpp"
+
+#include <rosgraph_msgs/Clock.h>
+#include <tf2_eigen/tf2_eigen.h>
+
+#include <cmath>
+
+#include "rigid_body_sim/kinematics.hpp"
+#include "rigid_body_sim/ros/conversions.hpp"
+#include "rigid_body_sim/ros/time_conversion.hpp"
+
+namespace rigid_body_ros {
+
+namespace {
+
+constexpr double kWarningPeriod = 2.0;  // [s] between repeats of the same warning
+
+bool finite(const geometry_msgs::Vector3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const geometry_msgs::Point& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
+bool finite(const geometry_msgs::Quaternion& q) {
+  return std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) && std::isfinite(q.w);
+}
+bool finite(const nav_msgs::Odometry& m) {
+  return finite(m.pose.pose.position) && finite(m.pose.pose.orientation) && finite(m.twist.twist.linear) &&
+         finite(m.twist.twist.angular);
+}
+bool finite(const rigid_body_sim::RigidBodyState& m) {
+  return finite(m.pose.position) && finite(m.pose.orientation) && finite(m.twist.linear) && finite(m.twist.angular) &&
+         finite(m.linear_momentum) && finite(m.angular_momentum) && finite(m.applied_wrench.force) &&
+         finite(m.applied_wrench.torque) && std::isfinite(m.kinetic_energy) && std::isfinite(m.potential_energy) &&
+         std::isfinite(m.quaternion_norm_error);
+}
+
+}  // namespace
+
+Outputs::Outputs(ros::NodeHandle& nh, const NodeConfig& config) : config_(config), channels_(config.bodies.size()) {
+  // In lockstep at full speed the outputs come in bursts: a deeper queue lets subscribers keep up longer
+  // (a subscriber slower than the simulation still misses messages; set real_time_factor then).
+  const uint32_t queue = config.lockstep ? 100 : 10;
+  for (std::size_t body = 0; body < channels_.size(); ++body) advertise(nh, body, queue);
+  if (config.lockstep) clock_publisher_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
+}
+
+void Outputs::advertise(ros::NodeHandle& nh, std::size_t body, uint32_t queue) {
+  Channel& channel = channels_[body];
+  const BodyConfig& config = config_.bodies[body];
+  // Ground truth: the covariances stay zero.
+  channel.odom_message.header.frame_id = config_.world_frame;
+  channel.odom_message.child_frame_id = config.body_frame;
+  channel.state_message.header.frame_id = config_.world_frame;
+  channel.state_message.child_frame_id = config.body_frame;
+  channel.applied_wrench_message.header.frame_id = config_.world_frame;
+  // Counts a publisher's subscribers in `count` (channels_ is sized once, so the channel stays where it is).
+  const auto advertise = [&](auto message, const std::string& topic, int Channel::*count) {
+    const ros::SubscriberStatusCallback connected = [this, body, count](const ros::SingleSubscriberPublisher&) {
+      ++(channels_[body].*count);
+    };
+    const ros::SubscriberStatusCallback disconnected = [this, body, count](const ros::SingleSubscriberPublisher&) {
+      --(channels_[body].*count);
+    };
+    return nh.advertise<decltype(message)>(config.topic(topic), queue, connected, disconnected);
+  };
+  if (config_.publish.odom) channel.odom = advertise(nav_msgs::Odometry(), "odom", &Channel::odom_subscribers);
+  if (config_.publish.state) {
+    channel.state = advertise(rigid_body_sim::RigidBodyState(), "state", &Channel::state_subscribers);
+  }
+  if (config_.publish.applied_wrench) {
+    channel.applied_wrench =
+        advertise(geometry_msgs::WrenchStamped(), "applied_wrench", &Channel::applied_wrench_subscribers);
+  }
+  if (config_.noise.enabled()) {
+    channel.noise = std::make_unique<OdometryNoise>(nh, config.topic("odom_noisy"), queue, config_.noise,
+                                                    config_.rate, body);  // one stream per body
+  }
+  if (config_.publish.tf) {
+    geometry_msgs::TransformStamped transform;
+    transform.header.frame_id = config_.world_frame;
+    transform.child_frame_id = config.body_frame;
+    transforms_.push_back(transform);
+  }
+}
+
+void Outputs::publishMeshFrames(const ros::Time& stamp) {
+  std::vector<geometry_msgs::TransformStamped> mesh_frames;
+  for (const BodyConfig& config : config_.bodies) {
+    if (config.mesh_frame.empty()) continue;
+    // The mesh's own frame relative to the body frame, X_BM = X_MB⁻¹, so visuals can hang on it.
+    geometry_msgs::TransformStamped X_BM = tf2::eigenToTransform(Eigen::Affine3d(config.X_MB.inverse().matrix()));
+    X_BM.header.stamp = stamp;
+    X_BM.header.frame_id = config.body_frame;
+    X_BM.child_frame_id = config.mesh_frame;
+    mesh_frames.push_back(X_BM);
+  }
+  if (mesh_frames.empty()) return;
+  mesh_frame_broadcaster_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
+  mesh_frame_broadcaster_->sendTransform(mesh_frames);
+}
+
+void Outputs::publishClock(const rigid_body::World& world) {
+  rosgraph_msgs::Clock clock;
+  clock.clock = toRosTime(world.stamp());
+  clock_publisher_.publish(clock);
+}
+
+void Outputs::publish(const rigid_body::World& world) {
+  const ros::Time stamp = toRosTime(world.stamp());
+  if (world.counters().resets != resets_seen_) {
+    resets_seen_ = world.counters().resets;
+    for (Channel& channel : channels_) channel.max_norm_error = 0.0;
+  }
+  for (std::size_t body = 0; body < channels_.size(); ++body) publishBody(world, body, stamp);
+  if (config_.publish.tf) tf_broadcaster_.sendTransform(transforms_);  // every body in one tf message
+}
+
+void Outputs::publishBody(const rigid_body::World& world, std::size_t body, const ros::Time& stamp) {
+  Channel& channel = channels_[body];
+  const rigid_body::Scene& scene = world.scene();
+  const rigid_body::State& state = scene.state(body);  // finite: the scene keeps the last good state
+  channel.max_norm_error = std::max(channel.max_norm_error, std::abs(rigid_body::quaternionNormError(state)));
+  if (config_.publish.tf) {
+    transforms_[body].header.stamp = stamp;
+    fillTransform(state, transforms_[body]);
+  }
+  const bool odom = channel.odom_subscribers > 0;
+  if (odom || channel.noise) {
+    channel.odom_message.header.stamp = stamp;
+    fillOdometry(scene.model(body).mass, state, channel.odom_message);
+    if (!finite(channel.odom_message)) {
+      ++withheld_;
+      ROS_WARN_THROTTLE(kWarningPeriod, "rigid_body_node: %s: odometry withheld: a non-finite velocity",
+                        config_.bodies[body].body_frame.c_str());
+    } else {
+      if (odom) channel.odom.publish(channel.odom_message);
+      if (channel.noise) channel.noise->publish(channel.odom_message, stamp);
+    }
+  }
+  const bool applied_wrench = channel.applied_wrench_subscribers > 0;
+  if (channel.state_subscribers > 0 || applied_wrench) {
+    channel.state_message.header.stamp = stamp;
+    fillStateMessage(scene.model(body), state, scene.input(body), channel.state_message);
+    if (!finite(channel.state_message)) {
+      ++withheld_;
+      ROS_WARN_THROTTLE(kWarningPeriod, "rigid_body_node: %s: state withheld: a non-finite field (energy overflow?)",
+                        config_.bodies[body].body_frame.c_str());
+      return;
+    }
+    if (channel.state_subscribers > 0) channel.state.publish(channel.state_message);
+  }
+  if (applied_wrench) {
+    channel.applied_wrench_message.header.stamp = stamp;
+    channel.applied_wrench_message.wrench = channel.state_message.applied_wrench;  // world axes, about the CoM
+    channel.applied_wrench.publish(channel.applied_wrench_message);
+  }
+}
+
+}  // namespace rigid_body_ros

@@ -1,0 +1,156 @@
+#include "rigid_body_sim/ros/wrench_input.hpp"
+
+#include <tf2_eigen/tf2_eigen.h>
+
+#include "rigid_body_sim/ros/conversions.hpp"
+#include "rigid_body_sim/ros/time_conversion.hpp"
+#include "rigid_body_sim/wrench_limits.hpp"
+
+namespace rigid_body_ros {
+
+namespace {
+// Warnings about bad input repeat at most this often [s], however fast the input comes.
+constexpr double kWarningPeriod = 2.0;
+// Distinct unknown frames remembered for their own warning period; beyond this the memory starts over.
+constexpr std::size_t kMaxWarnedFrames = 256;
+// Subscriber queues: a burst beyond this between two spins drops the oldest messages (roscpp's policy).
+constexpr uint32_t kQueueSize = 10;
+
+std::string withoutLeadingSlash(const std::string& frame) {
+  const std::size_t first = frame.find_first_not_of('/');
+  return first == std::string::npos ? std::string() : frame.substr(first);
+}
+}  // namespace
+
+WrenchInput::WrenchInput(ros::NodeHandle& nh, const NodeConfig& config, rigid_body::World& world,
+                         std::function<rigid_body::Nanoseconds()> now)
+    : config_(config), world_(world), now_(std::move(now)), tf_listener_(tf_buffer_) {
+  for (std::size_t body = 0; body < config.bodies.size(); ++body) {
+    const BodyConfig& body_config = config.bodies[body];
+    if (!body_config.wrench_input) continue;  // no input term: no subscriber
+    subscribers_.push_back(nh.subscribe<geometry_msgs::WrenchStamped>(
+        body_config.topic("wrench"), kQueueSize,
+        [this, body](const geometry_msgs::WrenchStamped::ConstPtr& m) { onWrench(body, *m); }));
+    subscribers_.push_back(nh.subscribe<geometry_msgs::Wrench>(
+        body_config.topic("wrench_unstamped"), kQueueSize,
+        [this, body](const geometry_msgs::Wrench::ConstPtr& m) { onWrenchUnstamped(body, *m); }));
+  }
+}
+
+bool WrenchInput::accept(const geometry_msgs::Wrench& wrench) {
+  switch (rigid_body::checkWrench(toWrench(wrench), config_.wrench_limits)) {
+    case rigid_body::WrenchVerdict::kAccepted:
+      return true;
+    case rigid_body::WrenchVerdict::kNonFinite:
+      ++rejections_.non_finite;
+      ROS_WARN_THROTTLE(kWarningPeriod, "rigid_body_node: rejected a wrench with a non-finite component (%lu so far)",
+                        static_cast<unsigned long>(rejections_.non_finite));
+      return false;
+    case rigid_body::WrenchVerdict::kForceOverLimit:
+      ++rejections_.force_limit;
+      ROS_WARN_THROTTLE(kWarningPeriod, "rigid_body_node: rejected a wrench: |force| above max_force = %g N (%lu so far)",
+                        config_.wrench_limits.max_force, static_cast<unsigned long>(rejections_.force_limit));
+      return false;
+    case rigid_body::WrenchVerdict::kTorqueOverLimit:
+      ++rejections_.torque_limit;
+      ROS_WARN_THROTTLE(kWarningPeriod,
+                        "rigid_body_node: rejected a wrench: |torque| above max_torque = %g N m (%lu so far)",
+                        config_.wrench_limits.max_torque, static_cast<unsigned long>(rejections_.torque_limit));
+      return false;
+  }
+  return false;
+}
+
+void WrenchInput::warnUnknownFrame(const std::string& frame, const std::string& error) {
+  const ros::WallTime now = ros::WallTime::now();
+  if (last_frame_warning_.size() >= kMaxWarnedFrames) last_frame_warning_.clear();
+  const auto found = last_frame_warning_.find(frame);
+  if (found != last_frame_warning_.end() && (now - found->second).toSec() < kWarningPeriod) return;
+  last_frame_warning_[frame] = now;
+  ROS_WARN("rigid_body_node: rejected a wrench in frame '%s' (%lu unknown-frame rejections so far): %s",
+           frame.c_str(), static_cast<unsigned long>(rejections_.unknown_frame), error.c_str());
+}
+
+bool WrenchInput::convert(std::size_t body, const geometry_msgs::Wrench& wrench, const std::string& frame_id,
+                          const ros::Time& stamp, const Eigen::Vector3d* point, ConvertedWrench& out) {
+  out = ConvertedWrench();
+  rigid_body::Wrench given = toWrench(wrench);
+  const std::string frame = withoutLeadingSlash(frame_id);
+  if (frame.empty() && !frame_id.empty()) {  // "/" alone names no frame
+    ++rejections_.unknown_frame;
+    warnUnknownFrame(frame_id, "not a frame id");
+    return false;
+  }
+  bool finite = true;
+  switch (classifyWrenchFrame(frame, config_.world_frame, config_.bodies[body].body_frame)) {
+    case WrenchFrame::kBody:
+      // Body axes about the centre of mass (the body frame's origin): turns with the body.
+      if (point) given.torque += point->cross(given.force);
+      out.wrench.body = given;
+      finite = given.isFinite();
+      break;
+    case WrenchFrame::kWorld:
+      out.wrench.world = given;
+      if (point) {
+        out.has_point = true;
+        out.p_WQ = *point;
+      }
+      break;
+    case WrenchFrame::kOther: {
+      // At the stamp if tf2 has it, else the latest transform; never a wait.
+      const tf2::BufferCore& core = tf_buffer_;
+      geometry_msgs::TransformStamped X_WF;
+      std::string error;
+      try {
+        const ros::Time when =
+            !stamp.isZero() && core.canTransform(config_.world_frame, frame, stamp, &error) ? stamp : ros::Time(0);
+        X_WF = core.lookupTransform(config_.world_frame, frame, when);
+      } catch (const tf2::TransformException& exception) {
+        ++rejections_.unknown_frame;
+        warnUnknownFrame(frame, exception.what());
+        return false;
+      }
+      const WrenchAtPoint at = wrenchAtPointInWorld(wrench, tf2::transformToEigen(X_WF), point);
+      out.wrench.world = at.wrench_W;
+      out.has_point = true;
+      out.p_WQ = at.p_WQ;
+      finite = at.wrench_W.isFinite() && at.p_WQ.allFinite();
+      break;
+    }
+  }
+  if (!finite) {
+    ++rejections_.non_finite;
+    ROS_WARN_THROTTLE(kWarningPeriod, "rigid_body_node: rejected a wrench whose change of frame overflowed (%lu so far)",
+                      static_cast<unsigned long>(rejections_.non_finite));
+    return false;
+  }
+  return true;
+}
+
+void WrenchInput::submit(std::size_t body, const ConvertedWrench& converted) {
+  const rigid_body::CommandReply reply =
+      world_.setWrench(body, converted.wrench, now_(), converted.has_point ? &converted.p_WQ : nullptr);
+  if (!reply.accepted) {
+    ++rejections_.refused_by_core;
+    ROS_WARN_THROTTLE(kWarningPeriod, "rigid_body_node: wrench refused: %s", reply.message.c_str());
+  }
+}
+
+void WrenchInput::onWrench(std::size_t body, const geometry_msgs::WrenchStamped& message) {
+  // The wrench acts from its arrival; its stamp only chooses the transform of a foreign frame (a stamp far in
+  // the past or the future, as `rostopic pub` gives under sim time, neither delays nor drops it).
+  if (!accept(message.wrench)) return;
+  ConvertedWrench converted;
+  if (!convert(body, message.wrench, message.header.frame_id, message.header.stamp, nullptr, converted)) return;
+  submit(body, converted);
+}
+
+void WrenchInput::onWrenchUnstamped(std::size_t body, const geometry_msgs::Wrench& message) {
+  // wrench_unstamped: world axes about the centre of mass (a drop-in for gazebo_ros_force users).
+  if (!accept(message)) return;
+  ConvertedWrench converted;
+  converted.wrench.world = toWrench(message);
+  submit(body, converted);
+}
+
+}  // namespace rigid_body_ros

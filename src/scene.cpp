@@ -1,0 +1,130 @@
+#include "rigid_body_sim/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "rigid_body_sim/kinematics.hpp"
+
+namespace rigid_body {
+
+const char* divergenceName(Divergence divergence) {
+  switch (divergence) {
+    case Divergence::kNone:
+      return "none";
+    case Divergence::kNonFiniteState:
+      return "non-finite state";
+    case Divergence::kEnergyGrowth:
+      return "energy growth beyond max_energy_growth";
+    case Divergence::kStepFailure:
+      return "integrator step failure";
+  }
+  return "unknown";
+}
+
+Scene::Scene(const std::vector<BodyDefinition>& bodies, IntegratorType integrator, double dt,
+             const IntegratorSettings& settings, StepAssembly assembly)
+    : integrator_type_(integrator), settings_(settings), assembly_(assembly), dt_(dt) {
+  if (!std::isfinite(dt) || dt <= 0.0) throw std::invalid_argument("dt must be a finite number > 0 [s]");
+  if (bodies.empty()) throw std::invalid_argument("a scene needs at least one body");
+  for (const BodyDefinition& body : bodies) {
+    if (!isFinite(body.initial)) throw std::invalid_argument("the initial state must be finite");
+    models_.push_back(body.model);
+    states_.push_back(body.initial);
+    records_.push_back(BodyRecord{body.initial, body.takes_input});
+  }
+  terms_.resize(bodies.size());
+  for (std::size_t body = 0; body < bodies.size(); ++body) assemble(body);
+  inputs_.assign(bodies.size(), AppliedWrench());
+  integrators_.assign(bodies.size(), Integrator(integrator, settings));
+}
+
+void Scene::assemble(std::size_t body) {
+  terms_[body] = assembly_ == StepAssembly::kGeneral
+                     ? StepTerms::all()
+                     : assembleTerms(models_[body].mass, models_[body].forces, states_[body], records_[body].takes_input);
+}
+
+void Scene::setInput(std::size_t body, const AppliedWrench& input) {
+  if (!records_[body].takes_input && !input.isZero()) {
+    throw std::invalid_argument("body " + std::to_string(body) + " takes no wrench input");
+  }
+  inputs_[body] = input;
+}
+
+std::size_t Scene::firstDiverged() const {
+  std::size_t body = 0;
+  while (body < records_.size() && records_[body].divergence == Divergence::kNone) ++body;
+  return body;
+}
+
+std::size_t Scene::runningBodies() const {
+  return static_cast<std::size_t>(std::count_if(records_.begin(), records_.end(), [](const BodyRecord& record) {
+    return record.divergence == Divergence::kNone;
+  }));
+}
+
+SceneStepResult Scene::step(std::int64_t steps) {
+  SceneStepResult result;
+  if (steps <= 0) return result;
+  for (std::size_t body = 0; body < states_.size(); ++body) {
+    if (records_[body].divergence != Divergence::kNone) continue;  // it holds its last good state until reset
+    StepStatus status = StepStatus::kOk;
+    result.steps = std::max(result.steps, stepBody(body, steps, status));
+    if (status != StepStatus::kOk && result.status == StepStatus::kOk) result.status = status;
+    result.diverged = result.diverged || records_[body].divergence != Divergence::kNone;
+  }
+  return result;
+}
+
+std::int64_t Scene::stepBody(std::size_t body, std::int64_t steps, StepStatus& status) {
+  const Model& model = models_[body];
+  const StepTerms& terms = terms_[body];
+  State& state = states_[body];
+  const AppliedWrench& input = inputs_[body];
+  Integrator& integrator = integrators_[body];
+  BodyRecord& record = records_[body];
+  const State before = state;
+  std::int64_t done = 0;
+  for (; done < steps; ++done) {
+    status = integrator.step(model, terms, input, dt_, state);
+    if (status != StepStatus::kOk) break;
+  }
+  record.integrated_steps += done;
+  if (status == StepStatus::kNonFinite || status == StepStatus::kNotConverged) {
+    record.divergence = status == StepStatus::kNonFinite ? Divergence::kNonFiniteState : Divergence::kStepFailure;
+  } else if (std::isfinite(max_energy_growth_) && input.isZero()) {
+    // With no commanded wrench the mechanical energy E = T + V cannot grow (damping only removes it). A
+    // method's error may move it in proportion to the energy in play: E itself and the work of gravity
+    // W = M g·Δx over the call (explicit Euler under gravity gains O(h) of W). A growth beyond
+    // (max_energy_growth − 1) times that budget is a blow-up. All terms scale with the body: no absolute floor.
+    const double kinetic_before = kineticEnergy(model.mass, before);
+    const double gravity_work = model.mass.mass() * model.forces.gravity_W.dot(state.p_WB - before.p_WB);
+    const double growth = kineticEnergy(model.mass, state) - gravity_work - kinetic_before;
+    const double budget = (max_energy_growth_ - 1.0) * (kinetic_before + std::abs(gravity_work));
+    if (!(growth <= budget * (1.0 + 1e-9))) record.divergence = Divergence::kEnergyGrowth;
+  }
+  if (record.divergence != Divergence::kNone) state = before;  // the last good state: before the call that diverged
+  return done;
+}
+
+void Scene::reset() {
+  for (std::size_t body = 0; body < states_.size(); ++body) {
+    states_[body] = records_[body].initial;
+    records_[body].divergence = Divergence::kNone;
+    assemble(body);
+  }
+  std::fill(inputs_.begin(), inputs_.end(), AppliedWrench());
+  // dopri5's memory restarts by itself from a state it did not return; a fresh integrator says so plainly.
+  integrators_.assign(states_.size(), Integrator(integrator_type_, settings_));
+}
+
+bool Scene::setState(std::size_t body, const State& state) {
+  if (!isFinite(state)) return false;
+  states_[body] = state;
+  assemble(body);
+  return true;
+}
+
+}  // namespace rigid_body
