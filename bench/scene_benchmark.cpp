@@ -11,6 +11,7 @@
 
 #include "rigid_body_sim/kinematics.hpp"
 #include "rigid_body_sim/scene.hpp"
+#include "rigid_body_sim/world.hpp"
 
 namespace {
 
@@ -18,7 +19,7 @@ using namespace rigid_body;
 
 constexpr std::int64_t kStepsPerTick = 10;
 
-Scene swarm(std::size_t bodies, IntegratorType type) {
+std::vector<BodyDefinition> swarmBodies(std::size_t bodies) {
   const MassProperties shapes[] = {MassProperties::box(1.0, Eigen::Vector3d(0.4, 0.2, 0.1)),
                                    MassProperties::sphere(1.0, 0.15), MassProperties::cylinder(1.0, 0.1, 0.4)};
   std::vector<BodyDefinition> definitions;
@@ -30,11 +31,19 @@ Scene swarm(std::size_t bodies, IntegratorType type) {
         Eigen::Vector3d(0.1, 0.2, 0.1 * static_cast<double>(i % 5)));
     definitions.push_back({Model{mass, ForceModel{}}, initial, i % 2 == 0});
   }
-  Scene simulation(definitions, type, 0.001);
-  AppliedWrench push;
-  push.world.force = Eigen::Vector3d(0.1, 0.0, 0.0);
-  push.body.torque = Eigen::Vector3d(0.0, 0.0, 0.001);
-  for (std::size_t i = 0; i < bodies; i += 2) simulation.setInput(i, push);
+  return definitions;
+}
+
+AppliedWrench push() {
+  AppliedWrench wrench;
+  wrench.world.force = Eigen::Vector3d(0.1, 0.0, 0.0);
+  wrench.body.torque = Eigen::Vector3d(0.0, 0.0, 0.001);
+  return wrench;
+}
+
+Scene swarm(std::size_t bodies, IntegratorType type) {
+  Scene simulation(swarmBodies(bodies), type, 0.001);
+  for (std::size_t i = 0; i < bodies; i += 2) simulation.setInput(i, push());
   return simulation;
 }
 
@@ -52,9 +61,34 @@ void stepScene(benchmark::State& bench, IntegratorType type) {
   bench.counters["bodies"] = static_cast<double>(bodies);
 }
 
+// The same tick through the World, as the node's timer runs it: update(now) 10 ms on, commands none. The
+// difference to stepScene is the runner's overhead (clock, catch-up budget, input timeline).
+void updateWorld(benchmark::State& bench, IntegratorType type) {
+  const auto bodies = static_cast<std::size_t>(bench.range(0));
+  WorldSettings settings;
+  settings.dt = 0.001;
+  World world(swarmBodies(bodies), type, IntegratorSettings(), settings);
+  world.start(0);
+  for (std::size_t i = 0; i < bodies; i += 2) world.setWrench(i, push(), 0);
+  Nanoseconds now = 0;
+  for (auto _ : bench) {
+    now += kStepsPerTick * 1000000;
+    world.update(now);
+    benchmark::DoNotOptimize(world.scene().state(bodies - 1));
+  }
+  bench.counters["per_body_step"] = benchmark::Counter(
+      static_cast<double>(bench.iterations()) * static_cast<double>(bodies * kStepsPerTick),
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  bench.counters["bodies"] = static_cast<double>(bodies);
+}
+
 int registerAll() {
   for (IntegratorType type : {IntegratorType::kSemiImplicitEuler, IntegratorType::kRk4}) {
     benchmark::RegisterBenchmark(("scene/" + integratorName(type)).c_str(), stepScene, type)
+        ->RangeMultiplier(10)
+        ->Range(1, 10000)
+        ->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark(("world/" + integratorName(type)).c_str(), updateWorld, type)
         ->RangeMultiplier(10)
         ->Range(1, 10000)
         ->Unit(benchmark::kMicrosecond);

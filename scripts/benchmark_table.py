@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Reads Google Benchmark JSON (integrators_benchmark, scene_benchmark) and prints the README's tables:
+"""Reads Google Benchmark JSON (integrators_benchmark, scene_benchmark) and prints the tables of docs/performance.md:
 ns per step with every term and with the assembled terms, and their ratio; ns per body-step against N."""
 import json
 import sys
@@ -34,11 +34,16 @@ def main():
     if len(sys.argv) > 2:
         scene = medians(sys.argv[2])
         print()
-        print("| integrator | bodies | µs per tick (10 steps) | ns per body and step |")
-        print("|---|---|---|---|")
+        print("| integrator | bodies | Scene::step: µs per tick (10 steps) | ns per body and step "
+              "| World::update: ns per body and step |")
+        print("|---|---|---|---|---|")
         for name, b in scene.items():
-            method, bodies = name.split("/")[1:3]
-            print(f"| {method} | {bodies} | {b['real_time']:.1f} | {b['per_body_step'] * 1e9:.0f} |")
+            kind, method, bodies = name.split("/")[0:3]
+            if kind != "scene":
+                continue
+            world = scene.get(f"world/{method}/{bodies}")
+            through_world = f"{world['per_body_step'] * 1e9:.0f}" if world else "-"
+            print(f"| {method} | {bodies} | {b['real_time']:.1f} | {b['per_body_step'] * 1e9:.0f} | {through_world} |")
 
 
 if __name__ == "__main__":

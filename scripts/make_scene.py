@@ -29,7 +29,7 @@ def main():
     side = max(1, math.ceil(math.sqrt(args.first + args.bodies)))
     width = max(2, len(str(args.first + args.bodies - 1)))
     publish = ", ".join(f"{o}: {'true' if o in enabled else 'false'}" for o in ("tf", "odom", "state", "applied_wrench"))
-    print(f"# A swarm of {args.bodies} bodies (written by scripts/make_scene.py; see README: Scenes).")
+    print(f"# A swarm of {args.bodies} bodies (written by scripts/make_scene.py; see docs/scenes.md).")
     print(f"# The first {with_input} take wrench commands (swarm_NN/wrench); the rest drift with no input.")
     print(f"rate: {args.rate}\ndt: {args.dt}\nintegrator: {args.integrator}\nworld_frame: world")
     print("gravity: [0.0, 0.0, 0.0]")

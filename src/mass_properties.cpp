@@ -2,7 +2,8 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
-#include <sstream>
+
+#include "rigid_body_sim/number_format.hpp"
 
 namespace rigid_body {
 
@@ -11,13 +12,6 @@ namespace {
 // Relative tolerance for symmetry and for the triangle inequality I_max ≤ I_a + I_b. A thin plate sits
 // exactly on the triangle bound, and an inertia typed by hand or computed from a mesh carries rounding.
 constexpr double kRelativeTolerance = 1e-9;
-
-std::string formatNumber(double value) {
-  std::ostringstream out;
-  out.precision(17);
-  out << value;
-  return out.str();
-}
 
 void requirePositiveFinite(double value, const char* what, const char* unit) {
   if (!std::isfinite(value) || value <= 0.0) {
@@ -33,20 +27,25 @@ MassProperties::MassProperties(double mass, const Eigen::Matrix3d& I_Bcm_B,
     : mass_(mass),
       inverse_mass_(1.0 / mass),
       I_Bcm_B_(I_Bcm_B),
-      I_Bcm_B_inv_(I_Bcm_B.inverse()),
+      // I⁻¹ = R_BP diag(1/λ) R_BPᵀ from the eigen-decomposition: no determinant to underflow (a 1e-300 kg
+      // body's det I would be 0, and Eigen's inverse NaN), and exactly symmetric.
+      I_Bcm_B_inv_(R_BP * principal_moments.cwiseInverse().asDiagonal() * R_BP.transpose()),
       principal_moments_(principal_moments),
       R_BP_(R_BP),
       // Isotropic only when the tensor is exactly I₀𝟙 up to rounding, so that ω = L/I₀ is the same number.
       isotropic_((I_Bcm_B - I_Bcm_B(0, 0) * Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() <=
                  1e-15 * std::abs(I_Bcm_B(0, 0))) {}
 
+Eigen::Vector3d boxPrincipalMoments(double mass, const Eigen::Vector3d& size) {
+  const Eigen::Vector3d s2 = size.cwiseProduct(size);
+  return mass / 12.0 * Eigen::Vector3d(s2.y() + s2.z(), s2.x() + s2.z(), s2.x() + s2.y());
+}
+
 MassProperties MassProperties::box(double mass, const Eigen::Vector3d& size) {
   requirePositiveFinite(size.x(), "box size x", "m");
   requirePositiveFinite(size.y(), "box size y", "m");
   requirePositiveFinite(size.z(), "box size z", "m");
-  const Eigen::Vector3d s2 = size.cwiseProduct(size);
-  const Eigen::Vector3d diagonal(s2.y() + s2.z(), s2.x() + s2.z(), s2.x() + s2.y());
-  return fromInertia(mass, (mass / 12.0 * diagonal).asDiagonal().toDenseMatrix());
+  return fromInertia(mass, boxPrincipalMoments(mass, size).asDiagonal().toDenseMatrix());
 }
 
 MassProperties MassProperties::sphere(double mass, double radius) {
@@ -76,6 +75,14 @@ MassProperties MassProperties::fromInertia(double mass, const Eigen::Matrix3d& I
   if (R_BP.determinant() < 0.0) R_BP.col(2) *= -1.0;  // a proper rotation, not a reflection
   if (!(moments(0) > 0.0)) {
     throw InvalidMassProperties("inertia must be positive definite, smallest principal moment is " +
+                                formatNumber(moments(0)) + " kg m^2");
+  }
+  // The step divides by M and by every principal moment: both must stay normal numbers with finite inverses.
+  if (!std::isnormal(mass) || !std::isfinite(1.0 / mass)) {
+    throw InvalidMassProperties("mass " + formatNumber(mass) + " kg has no finite inverse");
+  }
+  if (!std::isnormal(moments(0)) || !(moments.cwiseInverse().allFinite())) {
+    throw InvalidMassProperties("inertia is too small to invert: smallest principal moment " +
                                 formatNumber(moments(0)) + " kg m^2");
   }
   // Principal moments of a real mass distribution obey I_max ≤ I_a + I_b (equality for a flat plate).

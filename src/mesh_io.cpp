@@ -1,6 +1,10 @@
 #include "rigid_body_sim/mesh_io.hpp"
 
+#include <sys/stat.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstdlib>
 #include <cctype>
 #include <cstdint>
 #include <cstring>
@@ -20,12 +24,44 @@ std::string lower(std::string text) {
   return text;
 }
 
-std::string readFile(const std::string& path) {
+// The whole file, if it is a regular file of at most max_bytes: a device (/dev/zero), a FIFO (which would
+// block in open) or a directory is refused before it is opened, and no more than max_bytes + 1 are read.
+std::string readFile(const std::string& path, std::size_t max_bytes) {
+  struct stat info;
+  if (::stat(path.c_str(), &info) != 0) throw MeshError("cannot open mesh file '" + path + "': " + std::strerror(errno));
+  if (!S_ISREG(info.st_mode)) throw MeshError("mesh file '" + path + "' is not a regular file");
+  if (static_cast<std::uint64_t>(info.st_size) > max_bytes) {
+    throw MeshError("mesh file '" + path + "' has " + std::to_string(info.st_size) + " bytes, more than the limit of " +
+                    std::to_string(max_bytes));
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw MeshError("cannot open mesh file '" + path + "'");
-  std::ostringstream content;
-  content << in.rdbuf();
-  return content.str();
+  // One byte more than expected, to notice a file that grew since stat.
+  std::string content(static_cast<std::size_t>(info.st_size) + 1, '\0');
+  in.read(&content[0], static_cast<std::streamsize>(content.size()));
+  content.resize(static_cast<std::size_t>(in.gcount()));
+  if (content.size() > max_bytes) throw MeshError("mesh file '" + path + "' grew beyond the limit while read");
+  return content;
+}
+
+// A face corner "i", "i/t", "i//n" or "i/t/n" as a 0-based vertex index: 1-based positive indices, negative
+// ones counting back from the vertices read so far (Wavefront OBJ). Anything else, 0, or an index outside
+// the vertices read so far is an error naming the line.
+int objVertexIndex(const std::string& corner, std::size_t vertices, const std::string& where) {
+  const std::string text = corner.substr(0, corner.find('/'));
+  errno = 0;
+  char* end = nullptr;
+  const long long index = std::strtoll(text.c_str(), &end, 10);
+  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE) {
+    throw MeshError(where + ": face corner '" + corner + "' is not a vertex index");
+  }
+  const long long count = static_cast<long long>(vertices);
+  const long long zero_based = index > 0 ? index - 1 : count + index;
+  if (index == 0 || zero_based < 0 || zero_based >= count) {
+    throw MeshError(where + ": face corner '" + corner + "' names no vertex (" + std::to_string(vertices) +
+                    " read so far; OBJ indices start at 1)");
+  }
+  return static_cast<int>(zero_based);
 }
 
 TriangleMesh parseBinaryStl(const std::string& data, const std::string& path) {
@@ -84,11 +120,8 @@ TriangleMesh parseObj(const std::string& data, const std::string& path) {
     } else if (tag == "f") {
       std::vector<int> polygon;
       std::string corner;
-      while (in >> corner) {
-        // "i", "i/t", "i//n" or "i/t/n"; negative indices count from the end.
-        const int index = std::stoi(corner.substr(0, corner.find('/')));
-        polygon.push_back(index > 0 ? index - 1 : static_cast<int>(mesh.vertices.size()) + index);
-      }
+      const std::string where = "'" + path + "' line " + std::to_string(number);
+      while (in >> corner) polygon.push_back(objVertexIndex(corner, mesh.vertices.size(), where));
       if (polygon.size() < 3) throw MeshError("'" + path + "' line " + std::to_string(number) + ": a face with < 3 vertices");
       for (size_t k = 1; k + 1 < polygon.size(); ++k) mesh.triangles.push_back({polygon[0], polygon[k], polygon[k + 1]});
     }
@@ -99,9 +132,10 @@ TriangleMesh parseObj(const std::string& data, const std::string& path) {
 
 }  // namespace
 
-TriangleMesh loadMesh(const std::string& path) {
+TriangleMesh loadMesh(const std::string& path, std::size_t max_bytes) {
   const std::string extension = lower(path.substr(path.find_last_of('.') == std::string::npos ? path.size() : path.find_last_of('.')));
-  const std::string data = readFile(path);
+  if (extension != ".stl" && extension != ".obj") throw MeshError("'" + path + "': unknown mesh format (use .stl or .obj)");
+  const std::string data = readFile(path, max_bytes);
   TriangleMesh mesh;
   if (extension == ".stl") {
     // An ASCII STL starts with "solid" and has "facet"; some binary headers start with "solid" too.
@@ -110,8 +144,9 @@ TriangleMesh loadMesh(const std::string& path) {
     mesh = ascii ? parseAsciiStl(data, path) : parseBinaryStl(data, path);
   } else if (extension == ".obj") {
     mesh = parseObj(data, path);
-  } else {
-    throw MeshError("'" + path + "': unknown mesh format (use .stl or .obj)");
+  }
+  for (const Eigen::Vector3d& vertex : mesh.vertices) {
+    if (!vertex.allFinite()) throw MeshError("'" + path + "' has a vertex that is not a finite number");
   }
   return weldVertices(mesh);
 }

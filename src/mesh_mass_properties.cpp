@@ -17,8 +17,7 @@ const std::array<std::string, 4> kMethodNames = {"exact", "sampling", "bounding_
 const Eigen::Vector3d kRayDirection = Eigen::Vector3d(1.0, 0.3711, 0.2163).normalized();
 
 Eigen::Matrix3d boxInertia(double mass, const Eigen::Vector3d& size) {
-  const Eigen::Vector3d s2 = size.cwiseProduct(size);
-  return (mass / 12.0 * Eigen::Vector3d(s2.y() + s2.z(), s2.x() + s2.z(), s2.x() + s2.y())).asDiagonal();
+  return boxPrincipalMoments(mass, size).asDiagonal();
 }
 
 // Eberly's subexpressions for one coordinate of a triangle's corners.

@@ -12,9 +12,9 @@ namespace rigid_body {
 namespace reference {
 
 namespace {
-// Keep away from the separatrix Δ₂ = 0, where k → 1 and the elliptic form degenerates (REFERENCES §2.2).
+// Keep away from the separatrix Δ₂ = 0, where k → 1 and the elliptic form degenerates (docs/references.md §2.2).
 constexpr double kSeparatrixGuard = 1e-9;
-// ψ is integrated with 20-point Gauss–Legendre on sub-intervals of at most T_m/64 (REFERENCES §2.2 finds
+// ψ is integrated with 20-point Gauss–Legendre on sub-intervals of at most T_m/64 (docs/references.md §2.2 finds
 // 16 points on T_m/64 accurate to 2.7e-13 rad).
 constexpr int kQuadratureSubintervalsPerPeriod = 64;
 
@@ -46,8 +46,8 @@ SolidMassProperties lBracket(double density, double leg, double width, double th
   out.centre = (mass_a * centre_a + mass_b * centre_b) / out.mass;
   // Each box about its own centre, I = M/12 diag(y²+z², x²+z², x²+y²), moved to the common centre.
   const auto moved = [&](double m, const Eigen::Vector3d& size, const Eigen::Vector3d& centre) {
-    const Eigen::Vector3d s2 = size.cwiseProduct(size), d = centre - out.centre;
-    const Eigen::Matrix3d own = (m / 12.0 * Eigen::Vector3d(s2.y() + s2.z(), s2.x() + s2.z(), s2.x() + s2.y())).asDiagonal();
+    const Eigen::Vector3d d = centre - out.centre;
+    const Eigen::Matrix3d own = boxPrincipalMoments(m, size).asDiagonal();
     return Eigen::Matrix3d(own + m * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose()));
   };
   out.inertia = moved(mass_a, size_a, centre_a) + moved(mass_b, size_b, centre_b);
@@ -147,6 +147,20 @@ Eigen::Quaterniond TorqueFreeBody::orientation(double t) const {
   const Eigen::Vector3d axis = circulates_about_3_ ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
   const Eigen::Quaterniond relabelled = Q0_ * quaternionExp(psi * axis) * alignToAxis(relabelledMomentum(t));
   return flipped_ ? Eigen::Quaterniond(relabelled * kFlip) : relabelled;
+}
+
+double leastSquaresSlope(const std::vector<std::pair<double, double>>& points) {
+  if (points.size() < 2) return std::nan("");
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = static_cast<double>(points.size());
+  for (const auto& p : points) sx += p.first, sy += p.second, sxx += p.first * p.first, sxy += p.first * p.second;
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+double logLogSlope(const std::vector<std::pair<double, double>>& points) {
+  std::vector<std::pair<double, double>> logs;
+  for (const auto& p : points) logs.push_back({std::log(p.first), std::log(p.second)});
+  return leastSquaresSlope(logs);
 }
 
 const Eigen::Quaterniond& testOrientation() {

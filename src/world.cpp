@@ -398,7 +398,9 @@ CommandReply World::reset(Nanoseconds arrival) {
 }
 
 CommandReply World::setState(std::size_t body, const State& state, Nanoseconds arrival) {
-  if (!rigid_body::isFinite(state) || state.q_WB.norm() == 0.0) return {false, "refused: the state is not finite"};
+  if (!rigid_body::isFinite(state) || !(std::abs(state.q_WB.norm() - 1.0) <= 1e-6)) {
+    return {false, "refused: the state is not finite or its orientation not a unit quaternion"};
+  }
   Command command;
   command.kind = CommandKind::kSetState;
   command.body = body;

@@ -58,7 +58,7 @@ int nominalOrder(IntegratorType type);
 enum class StepStatus {
   kOk,            ///< the state was advanced
   kInvalidStep,   ///< h was negative or not finite: the state is unchanged
-  kNonFinite,     ///< the step produced a non-finite state: the state is unchanged
+  kNonFinite,     ///< the step produced a non-finite state or a non-unit q: the state is unchanged
   kNotConverged,  ///< an implicit solve or the step-size control failed: the state is unchanged
 };
 

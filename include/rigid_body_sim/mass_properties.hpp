@@ -21,6 +21,10 @@ enum class InertiaCheck {
                           ///< for user input
 };
 
+/// Principal moments of a solid box of `mass` [kg] and edge lengths size = (x, y, z) [m] about its centre,
+/// along its edges: M/12 (y² + z², x² + z², x² + y²) [kg m²]. Not validated (MassProperties::box is).
+Eigen::Vector3d boxPrincipalMoments(double mass, const Eigen::Vector3d& size);
+
 /// Constant mass properties of a body: mass and inertia about the centre of mass in body axes.
 /// Made only through the factories below, which validate; so a MassProperties always holds
 /// a positive mass and a symmetric positive-definite inertia that (unless explicitly exempted with

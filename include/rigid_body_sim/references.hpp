@@ -1,10 +1,12 @@
-// Closed-form solutions to test integrators against, from shared/REFERENCES.md §2 (each checked there
+// Closed-form solutions to test integrators against, from docs/references.md §2 (each checked there
 // against a fine RK4 run). Not integrators: every value comes from a formula, or for the asymmetric body's
 // orientation from a quadrature of a closed-form rate.
 #pragma once
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <utility>
+#include <vector>
 
 #include "rigid_body_sim/dynamics.hpp"
 #include "rigid_body_sim/mass_properties.hpp"
@@ -85,6 +87,11 @@ class TorqueFreeBody {
   double nu_;                // phase ν = F(φ₀|k²)
   Eigen::Quaterniond Q0_;    // R₀' P(0)ᵀ in the relabelled frame
 };
+
+/// Least-squares slope of y against x over the points (x, y), e.g. the drift rate of an energy error.
+double leastSquaresSlope(const std::vector<std::pair<double, double>>& points);
+/// The same of log y against log x: the empirical order of a method when x is the step and y its error.
+double logLogSlope(const std::vector<std::pair<double, double>>& points);
 
 // ---------------------------------------------------------------------------------------------------------
 // The test bodies the tests and the accuracy report share, so that a scene means the same in both.

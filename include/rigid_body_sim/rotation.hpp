@@ -30,7 +30,7 @@ inline Eigen::Matrix3d rotationMatrix(const Eigen::Quaterniond& q) {
 Eigen::Vector3d quaternionLog(const Eigen::Quaterniond& q);
 
 /// Angle [rad] of the rotation between two orientations: θ = 2 atan2(|vec(a⁻¹b)|, |w(a⁻¹b)|),
-/// the orientation error metric of shared/REFERENCES.md §3.2. In [0, π].
+/// the orientation error metric of docs/references.md §3.2. In [0, π].
 double rotationAngleBetween(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b);
 
 }  // namespace rigid_body

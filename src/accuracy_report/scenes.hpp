@@ -29,8 +29,8 @@ struct Scene {
   rigid_body::State reference;  ///< the exact (or converged) state at T
 };
 
-/// The five scenes of issue 4: ballistic under gravity, symmetric top, asymmetric body, the Dzhanibekov
-/// T handle over two flips, the seed's off-centre push on a box.
+/// The five scenes: ballistic under gravity, symmetric top, asymmetric body, the Dzhanibekov T handle over
+/// two flips, an off-centre push on a box.
 std::vector<Scene> workPrecisionScenes();
 
 /// The asymmetric body I = (1, 2, 3), m₀ = (1, 0.5, 2) over `duration` with its closed-form reference.

@@ -5,6 +5,7 @@
 
 #include "rigid_body_sim/integrators.hpp"
 #include "rigid_body_sim/kinematics.hpp"
+#include "rigid_body_sim/number_format.hpp"
 #include "rigid_body_sim/references.hpp"
 #include "rigid_body_sim/rotation.hpp"
 
@@ -17,7 +18,7 @@ namespace {
 using reference::torqueFreeStart;
 const Eigen::Quaterniond& kQ0 = reference::testOrientation();
 
-// Max stable step (REFERENCES §3.2): no NaN, finite q and |ΔE/E| < 10 % over a fixed number of steps.
+// Max stable step (docs/references.md §3.2): no NaN, finite q and |ΔE/E| < 10 % over a fixed number of steps.
 constexpr double kStableEnergyChange = 0.1;
 
 // Exempt from the triangle inequality: the suite uses Principia's published body I = (3, 5, 9).
@@ -73,11 +74,7 @@ class Rows {
   std::vector<StabilityRow> rows_;
 };
 
-std::string format(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
+std::string format(double value) { return formatNumber(value, 6); }
 
 // Thin rod spinning fast about its long axis, I = (ε, 1, 1 + ε), ω_B = (100, 1, 0) rad/s.
 void thinRods(Rows& rows, IntegratorType type) {

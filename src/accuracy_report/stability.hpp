@@ -1,5 +1,5 @@
 // The stiff and extreme suite of the accuracy report: each case run with every integrator, measured, and
-// judged against the threshold of issue 4 for the methods that claim it (the others are reported).
+// judged against its threshold for the methods that claim it (the others are reported).
 #pragma once
 
 #include <string>

@@ -16,6 +16,7 @@
 #include "rigid_body_sim/mass_properties.hpp"
 #include "rigid_body_sim/mesh_io.hpp"
 #include "rigid_body_sim/mesh_mass_properties.hpp"
+#include "rigid_body_sim/number_format.hpp"
 
 namespace rigid_body_ros {
 
@@ -25,6 +26,12 @@ using XmlRpc::XmlRpcValue;
 
 // The largest rate the timer is asked for; beyond it a ROS timer cannot keep its period anyway.
 constexpr double kMaxRate = 10000.0;
+// Sampling draws this many points at most (each costs a ray test against every triangle).
+constexpr std::uint64_t kMaxSamples = 10000000;
+// The largest mesh file the limit may be raised to [bytes].
+constexpr double kMaxMeshBytesLimit = 4e9;
+// The slowest timer [Hz]: a period of at most 1000 s.
+constexpr double kMinRate = 1e-3;
 // The smallest physics step [s]: a million steps per simulated second.
 constexpr double kMinDt = 1e-6;
 // The longest noise/delay [s]: the delay queue holds delay × rate messages.
@@ -35,7 +42,8 @@ constexpr double kQuaternionNormTolerance = 1e-3;
 // The keys of one body (flat at the top level, or in each item of ~bodies) and the scene-wide keys.
 const std::set<std::string> kBodyNames = {
     "name", "body_frame", "mass", "shape", "size", "inertia", "initial", "linear_damping", "angular_damping",
-    "mesh", "scale", "density", "inertia_method", "samples", "principal_axes", "mesh_frame", "wrench_input"};
+    "mesh", "scale", "density", "inertia_method", "samples", "principal_axes", "mesh_frame", "wrench_input",
+    "max_mesh_bytes"};
 const std::set<std::string> kSceneNames = {
     "rate", "dt", "integrator", "world_frame", "gravity", "bodies", "wrench_timeout", "max_substeps",
     "max_body_steps_per_tick", "max_body_steps_per_request", "publish_tf",
@@ -221,11 +229,19 @@ rigid_body::MassProperties readMeshMassProperties(const XmlRpcValue& params, Bod
   }
   options.samples = static_cast<std::uint64_t>(
       readInteger(params, "samples", static_cast<int>(options.samples), 1,
-                  "must be an integer >= 1 (points drawn for inertia_method sampling)"));
+                  "must be an integer in [1, 10000000] (points drawn for inertia_method sampling)"));
+  if (options.samples > kMaxSamples) {
+    fail("samples", *find(params, "samples"), "must be an integer in [1, 10000000] (points drawn for inertia_method sampling)");
+  }
+  const std::size_t max_bytes = static_cast<std::size_t>(
+      readNumber(params, "max_mesh_bytes", static_cast<double>(rigid_body::kDefaultMaxMeshBytes),
+                 [](double b) { return b >= 1.0 && b <= kMaxMeshBytesLimit; },
+                 "must be a number of bytes in [1, 4e9] (the largest mesh file read)"));
   const bool principal_axes = readBool(params, "principal_axes", false);
   try {
     const rigid_body::MeshMassProperties properties =
-        rigid_body::meshMassProperties(rigid_body::transformed(rigid_body::loadMesh(config.mesh_path), scale), options);
+        rigid_body::meshMassProperties(rigid_body::transformed(rigid_body::loadMesh(config.mesh_path, max_bytes), scale),
+                                       options);
     config.mesh_warnings = properties.warnings;
     const rigid_body::MeshBody body = rigid_body::meshBody(properties, principal_axes);
     config.X_MB = body.X_MB;
@@ -236,6 +252,12 @@ rigid_body::MassProperties readMeshMassProperties(const XmlRpcValue& params, Bod
   } catch (const rigid_body::InvalidMassProperties& error) {
     fail("mesh", *find(params, "mesh"), std::string("gives no physical inertia: ") + error.what());
   }
+}
+
+// A key that groups others must be a struct: `_publish:=5` or `noise: loud` is an error, not "unset".
+void requireStruct(const XmlRpcValue& params, const std::string& name, const std::string& keys) {
+  const XmlRpcValue* value = find(params, name);
+  if (value && value->getType() != XmlRpcValue::TypeStruct) fail(name, *value, "must be a struct of " + keys);
 }
 
 rigid_body::MassProperties readMassProperties(const XmlRpcValue& params, BodyConfig& config) {
@@ -279,11 +301,23 @@ rigid_body::MassProperties readMassProperties(const XmlRpcValue& params, BodyCon
   for (double s : config.size) {
     if (!(s > 0.0)) fail("size", *find(params, "size"), size_allowed);
   }
-  if (config.shape == "box") {
-    return rigid_body::MassProperties::box(mass, Eigen::Vector3d(config.size[0], config.size[1], config.size[2]));
+  // The keys of shape mesh mean nothing here: a typo or a forgotten shape, not something to ignore.
+  for (const char* key : {"mesh", "scale", "density", "inertia_method", "samples", "principal_axes", "max_mesh_bytes"}) {
+    if (find(params, key)) fail(key, *find(params, key), "is only for shape mesh");
   }
-  if (config.shape == "sphere") return rigid_body::MassProperties::sphere(mass, config.size[0]);
-  return rigid_body::MassProperties::cylinder(mass, config.size[0], config.size[1]);
+  // Mass and size together may give an inertia that overflows, underflows or cannot be inverted.
+  try {
+    if (config.shape == "box") {
+      return rigid_body::MassProperties::box(mass, Eigen::Vector3d(config.size[0], config.size[1], config.size[2]));
+    }
+    if (config.shape == "sphere") return rigid_body::MassProperties::sphere(mass, config.size[0]);
+    return rigid_body::MassProperties::cylinder(mass, config.size[0], config.size[1]);
+  } catch (const rigid_body::InvalidMassProperties& error) {
+    const XmlRpcValue* size = find(params, "size");
+    const XmlRpcValue* given_mass = find(params, "mass");
+    fail(size ? "size" : "mass", size ? *size : given_mass ? *given_mass : XmlRpcValue(mass),
+         "with ~mass = " + rigid_body::formatNumber(mass) + " gives no usable inertia: " + error.what());
+  }
 }
 
 void collectUnknown(const XmlRpcValue& params, const std::string& prefix, const std::set<std::string>& known,
@@ -299,6 +333,7 @@ void collectUnknown(const XmlRpcValue& params, const std::string& prefix, const 
 // gravity is already in config.gravity_W.
 BodyConfig parseBody(const XmlRpcValue& params, const NodeConfig& scene, const std::string& default_frame,
                      std::vector<std::string>& unknown) {
+  requireStruct(params, "initial", "position, orientation, linear_velocity, angular_velocity");
   BodyConfig body;
   body.body_frame = readFrame(params, "body_frame", default_frame);
   if (scene.world_frame == body.body_frame) {
@@ -402,8 +437,15 @@ std::vector<BodyConfig> parseBodies(const XmlRpcValue& params, const NodeConfig&
 
 NodeConfig parseConfig(const XmlRpcValue& params) {
   NodeConfig config;
+  if (params.getType() != XmlRpcValue::TypeStruct && params.getType() != XmlRpcValue::TypeInvalid) {
+    throw ParameterError("the private namespace ~ = " + render(params) +
+                         ": must hold the node's parameters as named keys (a struct), not a single value");
+  }
+  requireStruct(params, "publish", "tf, odom, state, applied_wrench (true or false)");
+  requireStruct(params, "noise", "position_stddev, orientation_stddev, linear_velocity_stddev, angular_velocity_stddev, seed, delay");
   config.rate = readNumber(params, "rate", config.rate, [](double r) { return r > 0.0 && r <= kMaxRate; },
                            "must be a finite number in (0, 10000] [Hz]");
+  if (config.rate < kMinRate) fail("rate", *find(params, "rate"), "must be >= 0.001 [Hz] (a timer period of at most 1000 s)");
   const double max_dt = 1.0 / config.rate;
   std::ostringstream dt_allowed;
   dt_allowed << "must be a finite number in (0, 1/rate = " << max_dt << "] [s]";

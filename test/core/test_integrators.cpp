@@ -1,4 +1,4 @@
-// The integrators against closed forms (shared/REFERENCES.md §2.4, §2.5, §2.6) and invariants.
+// The integrators against closed forms (docs/references.md §2.4, §2.5, §2.6) and invariants.
 // Value-parameterised over every method, so a new method is tested by being added to allIntegrators().
 #include <gtest/gtest.h>
 
@@ -35,7 +35,7 @@ double boundFor(IntegratorType type, double first_order, double second_order, do
 }  // namespace
 
 TEST_P(EveryIntegrator, ConstantForceGivesTheKnownDiscreteParabola) {
-  // REFERENCES §2.4: explicit Euler x_n = x(t_n) − F h t_n/(2m), semi-implicit + F h t_n/(2m),
+  // docs/references.md §2.4: explicit Euler x_n = x(t_n) − F h t_n/(2m), semi-implicit + F h t_n/(2m),
   // order ≥ 2 exact to rounding.
   const double m = 2.0, h = 0.01;
   const int n = 200;
@@ -81,7 +81,7 @@ TEST_P(EveryIntegrator, TorqueFreeSpinAboutAPrincipalAxisKeepsOmega) {
 }
 
 TEST_P(EveryIntegrator, SphereUnderBodyTorqueFollowsTheClosedForm) {
-  // REFERENCES §2.5: I = I₀𝟙, ω_b0 = 0, constant body torque: q(t) = q₀ ⊗ exp(θ(t) n), θ = |τ| t²/(2 I₀).
+  // docs/references.md §2.5: I = I₀𝟙, ω_b0 = 0, constant body torque: q(t) = q₀ ⊗ exp(θ(t) n), θ = |τ| t²/(2 I₀).
   const Model model{MassProperties::sphere(5.0, 0.2), ForceModel{}};
   const double I0 = model.mass.inertia()(0, 0);
   const Eigen::Vector3d tau_B(0.02, -0.01, 0.03);
@@ -114,7 +114,7 @@ TEST_P(EveryIntegrator, BodyFrameForceOnARotatedBodyActsRotated) {
 }
 
 TEST_P(EveryIntegrator, LinearDampingDecaysAtTheExactRateWithinTheMethodOrder) {
-  // REFERENCES §2.6: v(t) = v₀ e^(−ct/m).
+  // docs/references.md §2.6: v(t) = v₀ e^(−ct/m).
   const double m = 2.0, c = 1.0, h = 0.001, T = 1.0;
   Model model{MassProperties::sphere(m, 0.1), ForceModel{}};
   model.forces.linear_damping = c;
@@ -169,6 +169,26 @@ TEST_P(EveryIntegrator, NonFiniteResultLeavesTheStateUnchanged) {
   state.P_W = Eigen::Vector3d(1e308, 0.0, 0.0);
   EXPECT_EQ(Integrator(GetParam()).step(model, input, 10.0, state), StepStatus::kNonFinite);
   EXPECT_TRUE(isFinite(state));
+}
+
+TEST_P(EveryIntegrator, AHugeSpinEitherFailsTheStepOrKeepsAUnitQuaternion) {
+  // ω ~ 1e300 rad/s: an additive update makes q's components overflow, and normalising them divides by
+  // infinity: the zero quaternion, finite but no rotation. Such a step must fail, never return that q.
+  const Model model{MassProperties::fromInertia(1.0, Eigen::Vector3d(1.0, 2.0, 3.0).asDiagonal().toDenseMatrix()),
+                    ForceModel{}};
+  for (double L : {1e150, 1e300, 1.7e308}) {
+    State state;
+    state.L_W = Eigen::Vector3d(L, 0.5 * L, 0.0);
+    const State before = state;
+    const StepStatus status = Integrator(GetParam()).step(model, AppliedWrench(), 0.01, state);
+    if (status == StepStatus::kOk) {
+      EXPECT_NEAR(state.q_WB.norm(), 1.0, 1e-12) << L;
+      EXPECT_TRUE(isFinite(state)) << L;
+    } else {
+      EXPECT_TRUE(status == StepStatus::kNonFinite || status == StepStatus::kNotConverged) << L;
+      EXPECT_EQ(state.q_WB.coeffs(), before.q_WB.coeffs()) << L;  // unchanged
+    }
+  }
 }
 
 TEST_P(EveryIntegrator, ZeroAndTinyAngularVelocityStayFinite) {

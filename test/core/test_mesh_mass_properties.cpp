@@ -3,6 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <utility>
+#include <vector>
 
 #include "rigid_body_sim/mass_properties.hpp"
 #include "rigid_body_sim/mesh_io.hpp"
@@ -195,6 +201,78 @@ TEST(MeshErrors, BrokenMeshesGiveClearErrors) {
     FAIL() << "expected MeshError";
   } catch (const MeshError& error) {
     EXPECT_NE(std::string(error.what()).find("encloses no volume"), std::string::npos) << error.what();
+  }
+}
+
+// Every class of malformed input the readers can meet, written to a temporary file: each must give a
+// MeshError that says what is wrong, never a crash, an out-of-range read or a hang.
+TEST(MeshErrors, MalformedFilesOfEveryClassAreRefusedWithAMessage) {
+  const std::string directory = ::testing::TempDir();
+  const auto message = [&](const std::string& name, const std::string& content) -> std::string {
+    const std::string path = directory + "/" + name;
+    std::ofstream(path, std::ios::binary) << content;
+    try {
+      loadMesh(path);
+    } catch (const MeshError& error) {
+      return error.what();
+    }
+    return "(no error)";
+  };
+  const std::string vertices = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n";
+  const std::vector<std::pair<std::string, std::string>> objs = {
+      {vertices + "f 1 2 x\n", "is not a vertex index"},
+      {vertices + "f 1 2 3.5\n", "is not a vertex index"},
+      {vertices + "f 1 2 99999999999999999999\n", "is not a vertex index"},  // beyond int64
+      {vertices + "f 1 2 2147483648\n", "names no vertex"},                  // beyond int, and past the end
+      {vertices + "f 0 1 2\n", "names no vertex"},                           // OBJ counts from 1
+      {vertices + "f 1 2 5\n", "names no vertex"},                           // one past the last
+      {vertices + "f -5 1 2\n", "names no vertex"},                          // relative, before the first
+      {vertices + "f -9223372036854775808 1 2\n", "names no vertex"},
+      {"f 1 2 3\n" + vertices, "names no vertex"},                           // before any vertex
+      {vertices + "f /1 2 3\n", "is not a vertex index"},
+      {vertices + "f 1 2\n", "a face with < 3 vertices"},
+      {"v 0 0\n", "bad vertex"},
+      {"v 0 0 nan\n", "bad vertex"},
+      {vertices, "has no faces"},
+  };
+  for (std::size_t i = 0; i < objs.size(); ++i) {
+    const std::string got = message("case" + std::to_string(i) + ".obj", objs[i].first);
+    EXPECT_NE(got.find(objs[i].second), std::string::npos) << "case " << i << ": " << got;
+  }
+  // Relative indices that do name vertices are fine: the last three.
+  EXPECT_EQ(message("relative.obj", vertices + "f -1 -2 -3\nf 1 2 3\nf 1 2 4\nf 1 3 4\n").find("names no vertex"),
+            std::string::npos);
+  // A binary STL whose count does not match its size, one with a NaN corner, an ASCII STL cut short.
+  std::string binary(84, '\0');
+  binary[80] = 5;  // says 5 triangles, has none
+  EXPECT_NE(message("count.stl", binary).find("is not a valid binary STL"), std::string::npos);
+  std::string nan_corner(84 + 50, '\0');
+  nan_corner[80] = 1;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(&nan_corner[84 + 12], &nan, sizeof nan);
+  EXPECT_NE(message("nan.stl", nan_corner).find("not a finite number"), std::string::npos);
+  EXPECT_NE(message("cut.stl", "solid x\nfacet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0\n")
+                .find("a vertex line without three numbers"),
+            std::string::npos);
+  EXPECT_NE(message("unknown.ply", "ply\n").find("unknown mesh format"), std::string::npos);
+  // Not regular files (a directory, an endless device behind a mesh's name), and a file over the size limit.
+  const std::string folder = directory + "/folder.stl", zero = directory + "/zero.stl";
+  std::filesystem::create_directory(folder);
+  std::filesystem::remove(zero);
+  std::filesystem::create_symlink("/dev/zero", zero);
+  for (const std::string& path : {folder, zero}) {
+    try {
+      loadMesh(path);
+      FAIL() << "expected MeshError for " << path;
+    } catch (const MeshError& error) {
+      EXPECT_NE(std::string(error.what()).find("is not a regular file"), std::string::npos) << error.what();
+    }
+  }
+  try {
+    loadMesh(kMeshes + "/sphere.stl", 1000);
+    FAIL() << "expected MeshError";
+  } catch (const MeshError& error) {
+    EXPECT_NE(std::string(error.what()).find("more than the limit of 1000"), std::string::npos) << error.what();
   }
 }
 

@@ -2,7 +2,9 @@
 // names the parameter. The node is started the way a user starts it, with rosrun-style _name:=value.
 #include <gtest/gtest.h>
 #include <ros/ros.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -61,7 +63,35 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"orientation", "_initial/orientation:='[0,0,0,3]'", "parameter ~initial/orientation"},
                       Case{"damping", "_linear_damping:=-1", "parameter ~linear_damping = -1"},
                       Case{"mesh", "_shape:=mesh _mass:=1.0 _mesh:=/nonexistent/part.stl",
-                           "parameter ~mesh = '/nonexistent/part.stl': cannot open mesh file"}),
+                           "parameter ~mesh = '/nonexistent/part.stl': cannot open mesh file"},
+                      // Mass and size each valid, together an inertia that overflows, underflows or has no inverse.
+                      Case{"box_inertia_overflow", "_mass:=1e300 _size:='[1e10,1,1]'", "parameter ~size = '[1e10,1,1]': with ~mass = 1e+300 gives no usable inertia"},
+                      Case{"sphere_inertia_overflow", "_shape:=sphere _size:='[1e200]'", "parameter ~size = '[1e200]': with ~mass = 1 gives no usable inertia"},
+                      Case{"inertia_underflow", "_mass:=1e-300 _size:='[1e-100,1e-100,1e-100]'", "parameter ~size"},
+                      Case{"subnormal_mass", "_mass:=1e-320", "gives no usable inertia"},
+                      Case{"cylinder_inertia_overflow", "_shape:=cylinder _mass:=1e308 _size:='[1e5,1e5]'", "parameter ~size"},
+                      // Settings that would leave the node silent or stalled.
+                      Case{"dt_tiny", "_dt:=1e-300", "parameter ~dt = 1e-300: must be >= 1e-6 [s]"},
+                      Case{"rate_tiny", "_rate:=1e-300", "parameter ~rate = 1e-300: must be >= 0.001 [Hz]"},
+                      Case{"noise_delay", "_noise/delay:=1e9", "parameter ~noise/delay = 1000000000: must be a finite number in [0, 3600]"},
+                      Case{"max_substeps_type", "_max_substeps:=1e9", "parameter ~max_substeps"},
+                      Case{"request_bound", "_max_body_steps_per_request:=0", "parameter ~max_body_steps_per_request = 0"},
+                      // Struct keys of the wrong type, and keys that mean nothing for the shape.
+                      Case{"publish_type", "_publish:=5", "parameter ~publish = 5: must be a struct of"},
+                      Case{"noise_type", "_noise:=loud", "parameter ~noise = 'loud': must be a struct of"},
+                      Case{"initial_type", "_initial:='[1,2,3]'", "parameter ~initial = '[1,2,3]': must be a struct of"},
+                      Case{"samples_on_a_box", "_samples:=0", "parameter ~samples = 0: is only for shape mesh"},
+                      // Mesh files that are not what they say.
+                      Case{"mesh_device", "_shape:=mesh _mass:=1.0 _mesh:=/tmp/rigid_body_sim_zero.stl",
+                           "is not a regular file"},
+                      Case{"mesh_fifo", "_shape:=mesh _mass:=1.0 _mesh:=/tmp/rigid_body_sim_fifo.stl",
+                           "is not a regular file"},
+                      Case{"mesh_too_large", "_shape:=mesh _mass:=1.0 _mesh:=" TEST_MESH_DIR "/sphere.stl _max_mesh_bytes:=1000",
+                           "more than the limit of 1000"},
+                      Case{"mesh_bad_index", "_shape:=mesh _mass:=1.0 _mesh:=/tmp/rigid_body_sim_bad_index.obj",
+                           "names no vertex"},
+                      Case{"samples_huge", "_shape:=mesh _mass:=1.0 _mesh:=" TEST_MESH_DIR "/box.obj _inertia_method:=sampling _samples:=2147483647",
+                           "parameter ~samples = 2147483647: must be an integer in [1, 10000000]"}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 TEST(GoodParameters, TheSameBinaryRunsWithValidOnes) {
@@ -73,6 +103,17 @@ TEST(GoodParameters, TheSameBinaryRunsWithValidOnes) {
 
 int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
+  // The special files of the mesh cases: a device behind a .stl name, a FIFO (opening it would block for
+  // ever), an OBJ whose face names vertex 0.
+  std::remove("/tmp/rigid_body_sim_zero.stl");
+  std::remove("/tmp/rigid_body_sim_fifo.stl");
+  if (symlink("/dev/zero", "/tmp/rigid_body_sim_zero.stl") != 0 || mkfifo("/tmp/rigid_body_sim_fifo.stl", 0600) != 0) {
+    std::perror("cannot make the special mesh files");
+    return 1;
+  }
+  std::FILE* obj = std::fopen("/tmp/rigid_body_sim_bad_index.obj", "w");
+  std::fputs("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 0 1 2\n", obj);
+  std::fclose(obj);
   ros::init(argc, argv, "bad_parameters_test");
   return RUN_ALL_TESTS();
 }

@@ -2,6 +2,9 @@
 // reset and reset_time, apply_wrench with a duration and at a point, set_state/get_state, sensor noise,
 // and bit-for-bit reproducibility of a stepped run.
 #include <gtest/gtest.h>
+
+#include <cstdint>
+#include <limits>
 #include <rosgraph_msgs/Clock.h>
 #include <std_srvs/Empty.h>
 #include <std_srvs/Trigger.h>
@@ -89,6 +92,28 @@ TEST_F(Control, ApplyWrenchWithADurationChangesMomentumByForceTimesDuration) {
   EXPECT_NEAR(w.z(), -0.1 * 1.0 * 0.1 / I0, 1e-9);  // (0, 0.1, 0) × (1, 0, 0) = (0, 0, −0.1) N m for 0.1 s
   EXPECT_NEAR(w.x(), 0.0, 1e-12);
   call<std_srvs::Empty>("clear_wrenches");
+}
+
+TEST_F(Control, StepNAboveTheCatchUpCapTakesExactlyNStepsAndHugeRequestsAreRefused) {
+  // max_substeps is 1000 (the default): a request for 5000 steps must still take 5000, not the cap's 1000.
+  resetTime();
+  pause();
+  const Eigen::Vector3d force(2.0, 0.0, 0.0);
+  ASSERT_TRUE(apply("world", force, -1.0).success);  // until clear_wrenches
+  const auto before = state();
+  const auto stepped = step(5000);
+  ASSERT_TRUE(stepped.success) << stepped.message;
+  EXPECT_EQ(stepped.total_steps, before.total_steps + 5000);
+  EXPECT_NEAR(stepped.sim_time - before.stamp.toSec(), 5.0, 1e-9);
+  EXPECT_NEAR(state().twist_world.linear.x, 2.0 * 5.0 / kMass, 1e-9);  // v = F t / M over the whole 5 s
+  call<std_srvs::Empty>("clear_wrenches");
+  // Beyond the request bound (2e6 body-steps): refused with a message, nothing moves, the node answers.
+  rigid_body_sim::Step huge;
+  huge.request.steps = std::numeric_limits<std::int64_t>::max();
+  const auto refused = call("step", huge).response;
+  EXPECT_FALSE(refused.success);
+  EXPECT_NE(refused.message.find("at most"), std::string::npos) << refused.message;
+  EXPECT_EQ(state().total_steps, stepped.total_steps);
 }
 
 TEST_F(Control, SetStateAndGetStateRoundTripAndBadStatesAreRefused) {

@@ -99,6 +99,44 @@ TEST(Faults, ABlowUpSceneIsCaughtAndNeverReachesTheWire) {
   }
 }
 
+TEST(Faults, AStreamOfUnknownFramesIsRejectedAtOnceAndTheRateHolds) {
+  // 200 wrenches a second in frames tf2 does not know, stamped now (the case a waiting lookup would block
+  // on): every one is rejected and counted, the body does not move, and odometry keeps its 100 Hz. A frame
+  // with a leading '/' is the frame without it.
+  ros::NodeHandle nh;
+  Diagnostics diagnostics(nh);
+  Recorder<nav_msgs::Odometry> odom(nh, "stream/odom");
+  ros::Publisher publisher = advertiseWrench(nh, "stream");
+  ASSERT_TRUE(odom.waitForCount(5));
+  const std::size_t first = odom.messages.size();
+  int sent = 0;
+  ros::Rate rate(200.0);
+  for (int i = 0; i < 600; ++i) {  // 3 s
+    geometry_msgs::WrenchStamped message = wrench(i % 2 ? "/no_such_frame_" + std::to_string(i % 7) : "ghost", 1.0, 0.0, 0.0);
+    message.header.stamp = ros::Time::now();
+    publisher.publish(message);
+    ++sent;
+    ros::spinOnce();
+    rate.sleep();
+  }
+  ASSERT_TRUE(odom.waitForCount(first + 10));
+  const auto& early = odom.messages[first];
+  const auto& late = odom.messages.back();
+  const double span = (late.header.stamp - early.header.stamp).toSec();
+  const double hz = static_cast<double>(odom.messages.size() - 1 - first) / span;
+  EXPECT_GT(hz, 90.0) << odom.messages.size() - first << " messages over " << span << " s";
+  EXPECT_LT(hz, 110.0);
+  EXPECT_EQ(worldVelocity(late), Eigen::Vector3d::Zero());
+  ASSERT_TRUE(diagnostics.waitFor("stream_link", [&](const diagnostic_msgs::DiagnosticStatus& s) {
+    const std::string value = Diagnostics::value(s, "rejected unknown_frame");
+    return !value.empty() && std::stoi(value) >= sent * 9 / 10 && std::stoi(value) <= sent &&
+           Diagnostics::value(s, "wrenches applied") == "0";
+  }));
+  // "/world" is the world frame: accepted.
+  publisher.publish(wrench("/world", 1.0, 0.0, 0.0));
+  EXPECT_TRUE(waitUntil([&] { return worldVelocity(odom.messages.back()).x() > 0.0; }));
+}
+
 TEST(Faults, DiagnosticsReportTheNodesState) {
   ros::NodeHandle nh;
   Diagnostics diagnostics(nh);
