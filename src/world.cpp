@@ -15,6 +15,8 @@ constexpr double kGridTolerance = 1e-9;
 constexpr std::int64_t kMaxSteps = std::int64_t(1) << 62;
 constexpr Nanoseconds kMaxNanoseconds = std::numeric_limits<Nanoseconds>::max();
 constexpr Nanoseconds kMinNanoseconds = std::numeric_limits<Nanoseconds>::min();
+// A state handed in from outside must have a unit quaternion to this (the node normalises within 1e-6).
+constexpr double kUnitQuaternionTolerance = 1e-6;
 
 std::int64_t saturatingAdd(std::int64_t a, std::int64_t b) {
   std::int64_t sum;
@@ -343,20 +345,30 @@ void World::resetNow() {
   ++counters_.resets;
 }
 
+World::Command World::command(CommandKind kind, std::size_t body, Nanoseconds arrival) {
+  Command command;
+  command.kind = kind;
+  command.body = body;
+  command.arrival = arrival;
+  return command;
+}
+
+World::Command World::wrenchCommand(CommandKind kind, std::size_t body, const AppliedWrench& wrench,
+                                    Nanoseconds arrival, const Eigen::Vector3d* p_WQ) {
+  Command made = command(kind, body, arrival);
+  made.wrench = wrench;
+  if (p_WQ) {
+    made.has_point = true;
+    made.p_WQ = *p_WQ;
+  }
+  return made;
+}
+
 CommandReply World::setWrench(std::size_t body, const AppliedWrench& wrench, Nanoseconds arrival,
                               const Eigen::Vector3d* p_WQ) {
   if (body < bodyCount() && !scene_.takesInput(body) && !wrench.isZero()) return {false, "this body takes no wrench input"};
   if (!isFinite(wrench) || (p_WQ && !p_WQ->allFinite())) return {false, "refused: a non-finite wrench or point"};
-  Command command;
-  command.kind = CommandKind::kTopicWrench;
-  command.body = body;
-  command.wrench = wrench;
-  command.arrival = arrival;
-  if (p_WQ) {
-    command.has_point = true;
-    command.p_WQ = *p_WQ;
-  }
-  return submit(command);
+  return submit(wrenchCommand(CommandKind::kTopicWrench, body, wrench, arrival, p_WQ));
 }
 
 CommandReply World::applyWrench(std::size_t body, const AppliedWrench& wrench, Nanoseconds start, double duration,
@@ -369,59 +381,28 @@ CommandReply World::applyWrench(std::size_t body, const AppliedWrench& wrench, N
     return {false, "refused: " + std::to_string(settings_.max_timed_wrenches) +
                        " timed wrenches already act on this body (clear_wrenches first)"};
   }
-  Command command;
-  command.kind = CommandKind::kTimedWrench;
-  command.body = body;
-  command.wrench = wrench;
-  command.start = start;
-  command.duration = duration;
-  command.arrival = arrival;
-  if (p_WQ) {
-    command.has_point = true;
-    command.p_WQ = *p_WQ;
-  }
-  return submit(command);
+  Command timed = wrenchCommand(CommandKind::kTimedWrench, body, wrench, arrival, p_WQ);
+  timed.start = start;
+  timed.duration = duration;
+  return submit(timed);
 }
 
-CommandReply World::clearWrenches(Nanoseconds arrival) {
-  Command command;
-  command.kind = CommandKind::kClearWrenches;
-  command.arrival = arrival;
-  return submit(command);
-}
+CommandReply World::clearWrenches(Nanoseconds arrival) { return submit(command(CommandKind::kClearWrenches, 0, arrival)); }
 
-CommandReply World::reset(Nanoseconds arrival) {
-  Command command;
-  command.kind = CommandKind::kReset;
-  command.arrival = arrival;
-  return submit(command);
-}
+CommandReply World::reset(Nanoseconds arrival) { return submit(command(CommandKind::kReset, 0, arrival)); }
 
 CommandReply World::setState(std::size_t body, const State& state, Nanoseconds arrival) {
-  if (!rigid_body::isFinite(state) || !(std::abs(state.q_WB.norm() - 1.0) <= 1e-6)) {
+  if (!rigid_body::isFinite(state) || !(std::abs(state.q_WB.norm() - 1.0) <= kUnitQuaternionTolerance)) {
     return {false, "refused: the state is not finite or its orientation not a unit quaternion"};
   }
-  Command command;
-  command.kind = CommandKind::kSetState;
-  command.body = body;
-  command.state = state;
-  command.arrival = arrival;
-  return submit(command);
+  Command replace = command(CommandKind::kSetState, body, arrival);
+  replace.state = state;
+  return submit(replace);
 }
 
-CommandReply World::pause(Nanoseconds arrival) {
-  Command command;
-  command.kind = CommandKind::kPause;
-  command.arrival = arrival;
-  return submit(command);
-}
+CommandReply World::pause(Nanoseconds arrival) { return submit(command(CommandKind::kPause, 0, arrival)); }
 
-CommandReply World::unpause(Nanoseconds arrival) {
-  Command command;
-  command.kind = CommandKind::kUnpause;
-  command.arrival = arrival;
-  return submit(command);
-}
+CommandReply World::unpause(Nanoseconds arrival) { return submit(command(CommandKind::kUnpause, 0, arrival)); }
 
 CommandReply World::step(std::int64_t steps, Nanoseconds now) {
   if (steps < 1) return {false, "steps must be >= 1"};

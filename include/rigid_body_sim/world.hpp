@@ -178,6 +178,9 @@ class World {
   };
   static constexpr std::int64_t kForever = std::numeric_limits<std::int64_t>::max();
 
+  static Command command(CommandKind kind, std::size_t body, Nanoseconds arrival);
+  static Command wrenchCommand(CommandKind kind, std::size_t body, const AppliedWrench& wrench, Nanoseconds arrival,
+                               const Eigen::Vector3d* p_WQ);
   CommandReply submit(const Command& command);
   // The command's wrench about the body's centre of mass now; false if that overflowed.
   bool aboutCentreOfMass(const Command& command, AppliedWrench& wrench);

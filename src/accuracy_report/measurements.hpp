@@ -67,6 +67,8 @@ void writeStabilityCsv(const Options& options, const std::vector<StabilityRow>& 
 
 /// "CPU, cores, compiler, flags" of this machine, for the report.
 std::string machineDescription();
+/// The CPU-time clock the timings use: its resolution and the cost of one read, measured now.
+std::string clockDescription();
 /// The figures; false if gnuplot failed on any.
 bool drawFigures(const Options& options, const std::vector<Scene>& scenes);
 /// Claimed thresholds among the rows, and how many were met.

@@ -44,10 +44,10 @@ void writeIntroduction(std::ostream& md, const Options& options, const Sweep& sw
   md << "# rigid_body_sim accuracy report\n\n"
      << "Written by `rosrun rigid_body_sim accuracy_report" << (options.quick ? " --quick" : "") << "` ("
      << (options.quick ? "quick" : "full") << " run). Machine: " << machine << ".\n\n"
-     << "Errors are at the final time against the closed forms of `references.hpp` (the off-centre push: rk4 at "
-        "h = 10 µs); CPU time is the median of "
+     << "Errors are at the final time against the closed forms of `references.hpp` (the off-centre push, which has "
+        "none: Euler's equations in body axes integrated by a separate RK4 at h = 10 µs); CPU time is the median of "
      << sweep.repeats << " in-process repeats after a warm-up (Hairer–Wanner convention), each repeat running the "
-        "scene until at least 10 ms of CPU time have passed. dopri5 is swept over its "
+        "scene until at least 10 ms of CPU time have passed (clock: " << clockDescription() << "). dopri5 is swept over its "
         "tolerance (1e-4 … 1e-12) at an output step of 10 ms. Files: `work_precision.csv`, `order.csv`, "
         "`control_rate.csv`, `error_growth.csv`, `stability.csv`.\n\n";
 }

@@ -8,7 +8,7 @@
 namespace rigid_body_ros {
 
 namespace {
-// The publish-rate status accepts ±10 % of the configured rate over a window of 10 ticks.
+// The publish-rate status accepts ±10 % of the configured rate over a window of 10 reports.
 constexpr double kFrequencyTolerance = 0.1;
 constexpr int kFrequencyWindow = 10;
 }  // namespace
@@ -20,16 +20,40 @@ NodeDiagnostics::NodeDiagnostics(ros::NodeHandle& nh, ros::NodeHandle& private_n
       world_(world),
       wrench_input_(wrench_input),
       outputs_(outputs),
-      updater_(nh, private_nh),
-      min_frequency_(config.rate),
-      max_frequency_(config.rate),
-      publish_frequency_(diagnostic_updater::FrequencyStatusParam(&min_frequency_, &max_frequency_,
-                                                                  kFrequencyTolerance, kFrequencyWindow)) {
+      updater_(nh, private_nh) {
   updater_.setHardwareID(ros::this_node::getName());
-  updater_.add(publish_frequency_);
+  updater_.add("Frequency Status", this, &NodeDiagnostics::diagnoseFrequency);
   updater_.add(config.bodies.size() == 1 ? "rigid body " + config.bodies[0].body_frame
                                          : "rigid body scene (" + std::to_string(config.bodies.size()) + " bodies)",
                this, &NodeDiagnostics::diagnose);
+}
+
+void NodeDiagnostics::tick(rigid_body::Nanoseconds now) {
+  ++ticks_;
+  last_tick_ = now;
+}
+
+void NodeDiagnostics::diagnoseFrequency(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  window_.emplace_back(ticks_, last_tick_);
+  if (window_.size() > static_cast<std::size_t>(kFrequencyWindow)) window_.erase(window_.begin());
+  const std::uint64_t events = window_.back().first - window_.front().first;
+  const rigid_body::Nanoseconds span = window_.back().second - window_.front().second;  // both on one clock
+  const double seconds = toSeconds(span);
+  const double frequency = seconds > 0.0 ? static_cast<double>(events) / seconds : 0.0;
+  if (events == 0) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "No events recorded.");
+  } else if (frequency < config_.rate * (1.0 - kFrequencyTolerance)) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "Frequency too low.");
+  } else if (frequency > config_.rate * (1.0 + kFrequencyTolerance)) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "Frequency too high.");
+  } else {
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "Desired frequency met");
+  }
+  status.add("Events in window", events);
+  status.add("Events since startup", ticks_);
+  status.add("Duration of window (s)", seconds);
+  status.add("Actual frequency (Hz)", frequency);
+  status.add("Target frequency (Hz)", config_.rate);
 }
 
 void NodeDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {

@@ -49,7 +49,7 @@ const std::set<std::string> kSceneNames = {
     "max_body_steps_per_tick", "max_body_steps_per_request", "publish_tf",
     "publish", "abs_tolerance", "rel_tolerance", "max_force", "max_torque", "max_energy_growth", "lockstep",
     "real_time_factor", "start_paused", "noise"};
-const std::set<std::string> kPublishNames = {"tf", "odom", "state", "applied_wrench"};
+const std::set<std::string> kPublishNames = {"tf", "odom", "state", "applied_wrench", "body_services"};
 const std::set<std::string> kNoiseNames = {"position_stddev", "orientation_stddev", "linear_velocity_stddev",
                                            "angular_velocity_stddev", "seed", "delay"};
 const std::set<std::string> kInitialNames = {"position", "orientation", "linear_velocity", "angular_velocity"};
@@ -441,7 +441,7 @@ NodeConfig parseConfig(const XmlRpcValue& params) {
     throw ParameterError("the private namespace ~ = " + render(params) +
                          ": must hold the node's parameters as named keys (a struct), not a single value");
   }
-  requireStruct(params, "publish", "tf, odom, state, applied_wrench (true or false)");
+  requireStruct(params, "publish", "tf, odom, state, applied_wrench, body_services (true or false)");
   requireStruct(params, "noise", "position_stddev, orientation_stddev, linear_velocity_stddev, angular_velocity_stddev, seed, delay");
   config.rate = readNumber(params, "rate", config.rate, [](double r) { return r > 0.0 && r <= kMaxRate; },
                            "must be a finite number in (0, 10000] [Hz]");
@@ -498,6 +498,7 @@ NodeConfig parseConfig(const XmlRpcValue& params) {
   config.publish.odom = readBool(params, "publish/odom", true);
   config.publish.state = readBool(params, "publish/state", true);
   config.publish.applied_wrench = readBool(params, "publish/applied_wrench", true);
+  config.publish.body_services = readBool(params, "publish/body_services", true);
   config.lockstep = readBool(params, "lockstep", false);
   config.real_time_factor = readNumber(params, "real_time_factor", 1.0, [](double f) { return f >= 0.0; },
                                        "must be a finite number >= 0 (0: as fast as possible)");
@@ -557,7 +558,8 @@ std::string NodeConfig::describe() const {
       << max_substeps << ", max_force " << wrench_limits.max_force << " N, max_torque " << wrench_limits.max_torque
       << " N m, max_energy_growth " << max_energy_growth << ", publish tf " << (publish.tf ? "true" : "false")
       << " odom " << (publish.odom ? "true" : "false") << " state " << (publish.state ? "true" : "false")
-      << " applied_wrench " << (publish.applied_wrench ? "true" : "false");
+      << " applied_wrench " << (publish.applied_wrench ? "true" : "false") << " body_services "
+      << (publish.body_services ? "true" : "false");
   for (const BodyConfig& body : bodies) {
     const Eigen::Vector3d& I = body.model.mass.principalMoments();
     out << "\n  body '" << (body.name.empty() ? "(flat)" : body.name) << "': frame " << body.body_frame << ", mass "

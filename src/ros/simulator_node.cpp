@@ -34,7 +34,9 @@ rigid_body::WorldSettings worldSettings(const NodeConfig& config) {
   settings.wrench_timeout = config.wrench_timeout;
   // ROS time going back by less than one tick period is clock jitter, waited out; more re-anchors the grid.
   settings.jitter_tolerance = rigid_body::toNanoseconds(1.0 / config.rate);
-  settings.end_of_time = kEndOfRosTime;
+  // roscpp's timer and diagnostic_updater add their periods to ROS time and throw past 2^32 s: the clock
+  // stops two timer periods and 10 s before that, and the node stops its timer there.
+  settings.end_of_time = kEndOfRosTime - rigid_body::toNanoseconds(2.0 / config.rate + 10.0);
   settings.owns_clock = config.lockstep;
   settings.start_paused = config.start_paused;
   settings.max_energy_growth = config.max_energy_growth;
@@ -54,6 +56,16 @@ SimulatorNode::SimulatorNode(const ros::NodeHandle& nh, const ros::NodeHandle& p
                   outputs_.publishClock(world_);
                   publish();
                 }) {}
+
+void SimulatorNode::guarded(const std::function<void()>& tick) {
+  // A tick must not take the node down: an exception from a library's own arithmetic (ros::Time, tf2,
+  // diagnostic_updater) is logged and the next tick tries again. The core throws nothing in a tick.
+  try {
+    tick();
+  } catch (const std::exception& error) {
+    ROS_ERROR_THROTTLE(kWarningPeriod, "rigid_body_node: a tick failed: %s", error.what());
+  }
+}
 
 rigid_body::Nanoseconds SimulatorNode::now() const {
   return config_.lockstep ? world_.stamp() : toNanoseconds(ros::Time::now());
@@ -81,7 +93,7 @@ void SimulatorNode::start(const ros::Time& start_time) {
   const double period = 1.0 / config_.rate;
   timer_ = nh_.createTimer(ros::Duration(period), [this, period](const ros::TimerEvent&) {
     const ros::WallTime begin = ros::WallTime::now();
-    update(ros::Time::now());
+    guarded([this] { update(ros::Time::now()); });
     if ((ros::WallTime::now() - begin).toSec() > period) diagnostics_.countOverrun();
   });
 }
@@ -99,7 +111,7 @@ void SimulatorNode::update(const ros::Time& now) {
 
 void SimulatorNode::publish() {
   outputs_.publish(world_);
-  diagnostics_.tick();
+  diagnostics_.tick(world_.stamp());
 }
 
 void SimulatorNode::report(const rigid_body::UpdateResult& result) {
@@ -127,9 +139,13 @@ void SimulatorNode::report(const rigid_body::UpdateResult& result) {
              toSeconds(world_.stamp()));
     diagnostics_.forceUpdate();  // diagnostic_updater's next report is scheduled far ahead now
   }
-  if (result.end_of_time) {
-    ROS_ERROR_THROTTLE(kWarningPeriod * 30, "rigid_body_node: simulated time reached the end of ROS time (2^32 s): "
-                                            "the clock stopped; restart with an earlier clock");
+  if (result.end_of_time && timer_.isValid()) {
+    // Nothing more can happen on this clock: stop the timer before roscpp's own arithmetic overflows.
+    timer_.stop();
+    timer_ = ros::Timer();
+    ROS_ERROR("rigid_body_node: simulated time reached the end of what ROS time can hold (2^32 s, less a margin): "
+              "the clock and the timer stopped; services still answer; restart with an earlier clock");
+    diagnostics_.forceUpdate();
   }
 }
 
@@ -147,12 +163,14 @@ void SimulatorNode::runLockstep() {
       pace_steps = world_.clockSteps();
       continue;
     }
-    advance(world_.timeOfStep(world_.clockSteps() + 1));  // the timer's update, one step of our own clock on
-    if (world_.clockSteps() % steps_per_publish == 0) {
-      outputs_.publishClock(world_);
-      publish();
-      diagnostics_.update();
-    }
+    guarded([&] {
+      advance(world_.timeOfStep(world_.clockSteps() + 1));  // the timer's update, one step of our own clock on
+      if (world_.clockSteps() % steps_per_publish == 0) {
+        outputs_.publishClock(world_);
+        publish();
+        diagnostics_.update();
+      }
+    });
     if (config_.real_time_factor > 0.0) {
       // Sleep until wall time catches up with simulated time / factor, in slices so shutdown is noticed.
       const double simulated = static_cast<double>(world_.clockSteps() - pace_steps) * config_.dt;

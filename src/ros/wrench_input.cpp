@@ -13,6 +13,8 @@ namespace {
 constexpr double kWarningPeriod = 2.0;
 // Distinct unknown frames remembered for their own warning period; beyond this the memory starts over.
 constexpr std::size_t kMaxWarnedFrames = 256;
+// How far up the tf tree a frame is followed to find out whether it belongs to the body.
+constexpr int kMaxTreeDepth = 64;
 // Subscriber queues: a burst beyond this between two spins drops the oldest messages (roscpp's policy).
 constexpr uint32_t kQueueSize = 10;
 
@@ -61,6 +63,18 @@ bool WrenchInput::accept(const geometry_msgs::Wrench& wrench) {
   return false;
 }
 
+bool WrenchInput::hangsBelow(const std::string& frame, const std::string& body_frame) const {
+  const tf2::BufferCore& core = tf_buffer_;
+  std::string current = frame, parent;
+  // Up the tree from `frame` (a bounded walk: a tree deeper than this is not a robot's body).
+  for (int depth = 0; depth < kMaxTreeDepth && core._getParent(current, ros::Time(0), parent); ++depth) {
+    if (parent == body_frame) return true;
+    if (parent == current) return false;
+    current = parent;
+  }
+  return false;
+}
+
 void WrenchInput::warnUnknownFrame(const std::string& frame, const std::string& error) {
   const ros::WallTime now = ros::WallTime::now();
   if (last_frame_warning_.size() >= kMaxWarnedFrames) last_frame_warning_.clear();
@@ -97,8 +111,26 @@ bool WrenchInput::convert(std::size_t body, const geometry_msgs::Wrench& wrench,
       }
       break;
     case WrenchFrame::kOther: {
-      // At the stamp if tf2 has it, else the latest transform; never a wait.
       const tf2::BufferCore& core = tf_buffer_;
+      if (hangsBelow(frame, config_.bodies[body].body_frame)) {
+        // A frame of the body itself (a thruster or sensor link published relative to body_frame): the wrench
+        // is fixed in the body, F_B = R_BF F_F and τ_B = R_BF τ_F + p_BQ × F_B with Q the frame's origin (or
+        // the point), so it turns with the body and its lever arm stays fixed in body axes.
+        geometry_msgs::TransformStamped X_BF;
+        try {
+          X_BF = core.lookupTransform(config_.bodies[body].body_frame, frame, ros::Time(0));
+        } catch (const tf2::TransformException& exception) {
+          ++rejections_.unknown_frame;
+          warnUnknownFrame(frame, exception.what());
+          return false;
+        }
+        const WrenchAtPoint at = wrenchAtPointInWorld(wrench, tf2::transformToEigen(X_BF), point);  // "world" = B here
+        out.wrench.body.force = at.wrench_W.force;
+        out.wrench.body.torque = at.wrench_W.torque + at.p_WQ.cross(at.wrench_W.force);
+        finite = out.wrench.body.isFinite();
+        break;
+      }
+      // Any other frame: at the stamp if tf2 has it, else the latest transform; never a wait.
       geometry_msgs::TransformStamped X_WF;
       std::string error;
       try {

@@ -121,19 +121,34 @@ TEST_F(AccuracyReport, Rk4BeatsExplicitEulerByOrdersOfMagnitudeAtEqualStep) {
   EXPECT_EQ(compared, 8);
 }
 
+// The verdict of `value` against a threshold written "<= X" or "= X", recomputed here rather than read from
+// the report's own pass column.
+bool meets(double value, const std::string& threshold) {
+  std::istringstream in(threshold);
+  std::string op;
+  double bound = 0.0;
+  in >> op >> bound;
+  EXPECT_TRUE(in && (op == "<=" || op == "=")) << "unreadable threshold '" << threshold << "'";
+  return op == "<=" ? value <= bound : value == bound;
+}
+
 TEST_F(AccuracyReport, EveryClaimedThresholdIsMet) {
   const auto rows = readCsv(file("stability.csv"));
-  ASSERT_GT(rows.size(), 100u);
+  ASSERT_FALSE(rows.empty());
   int claims = 0;
   std::map<std::string, bool> cases;
   for (const auto& row : rows) {
     cases[row.at("case")] = true;
-    if (row.at("claimed") != "yes" || row.at("threshold").empty()) continue;
+    if (row.at("threshold").empty()) continue;
+    const bool verdict = meets(std::stod(row.at("value")), row.at("threshold"));
+    const std::string what = row.at("case") + " / " + row.at("integrator") + " / " + row.at("metric") + " = " +
+                             row.at("value") + " (" + row.at("threshold") + ")";
+    EXPECT_EQ(row.at("pass"), verdict ? "yes" : "no") << "the report's own verdict is wrong: " << what;
+    if (row.at("claimed") != "yes") continue;
     ++claims;
-    EXPECT_EQ(row.at("pass"), "yes") << row.at("case") << " / " << row.at("integrator") << " / " << row.at("metric")
-                                     << " = " << row.at("value") << " (" << row.at("threshold") << ")";
+    EXPECT_TRUE(verdict) << what;
   }
-  EXPECT_GT(claims, 100);
+  EXPECT_GT(claims, 0);
   for (const char* name : {"thin_rod", "thin_rod_1e-4", "high_spin", "dzhanibekov_130s", "near_zero_omega",
                            "scale_1e-9_1e9", "large_step_1s", "stiff_damping", "long_run"}) {
     EXPECT_TRUE(cases.count(name)) << name;

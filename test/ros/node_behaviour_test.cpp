@@ -208,6 +208,44 @@ TEST_F(NodeBehaviour, WrenchInATfFrameGetsItsMomentArmAndAnUnknownFrameIsRejecte
   publisher.publish(wrench("world", 0.0, 0.0, 0.0));
 }
 
+TEST_F(NodeBehaviour, AWrenchInAFrameBelowTheBodyTurnsWithTheBody) {
+  // "thruster" hangs below thrust_link, 0.5 m along body x: a force along its y is fixed in the body,
+  // F_B = (0, 1, 0), with the fixed lever arm τ_B = (0.5, 0, 0) × (0, 1, 0) = (0, 0, 0.5) N m. While the
+  // sphere spins about z, the world force must turn with it: F_W = R(q) F_B in every state message.
+  Recorder<rigid_body_sim::RigidBodyState> state(nh_, "thruster/state");
+  ros::Publisher publisher = advertiseWrench("thruster");
+  tf2_ros::StaticTransformBroadcaster static_broadcaster;
+  geometry_msgs::TransformStamped mount;
+  mount.header.stamp = ros::Time::now();
+  mount.header.frame_id = "thrust_link";
+  mount.child_frame_id = "thruster";
+  mount.transform.translation.x = 0.5;
+  mount.transform.rotation.w = 1.0;
+  static_broadcaster.sendTransform(mount);
+  spinFor(0.5);  // let the node's tf listener receive it
+  publisher.publish(wrench("thruster", 0.0, 1.0, 0.0));
+  ASSERT_TRUE(waitUntil([&] { return !state.messages.empty() && state.messages.back().applied_wrench.force.y != 0.0; }));
+  const std::size_t first = state.messages.size() - 1;
+  ASSERT_TRUE(state.waitForCount(first + 40));  // 0.4 s at 100 Hz: the body turns by more than 0.8 rad
+  Eigen::Vector3d first_force_W = Eigen::Vector3d::Zero();
+  for (std::size_t i = first; i < state.messages.size(); ++i) {
+    const rigid_body_sim::RigidBodyState& m = state.messages[i];
+    Eigen::Quaterniond q;
+    tf2::fromMsg(m.pose.orientation, q);
+    Eigen::Vector3d force_W, torque_W;
+    tf2::fromMsg(m.applied_wrench.force, force_W);
+    tf2::fromMsg(m.applied_wrench.torque, torque_W);
+    EXPECT_LT((force_W - q * Eigen::Vector3d(0.0, 1.0, 0.0)).norm(), 1e-9) << i;
+    EXPECT_LT((torque_W - q * Eigen::Vector3d(0.0, 0.0, 0.5)).norm(), 1e-9) << i;
+    if (i == first) first_force_W = force_W;
+  }
+  // And it did turn: a world-held force would have kept its first direction.
+  Eigen::Vector3d last_force_W;
+  tf2::fromMsg(state.messages.back().applied_wrench.force, last_force_W);
+  EXPECT_GT(std::acos(std::min(1.0, first_force_W.dot(last_force_W))), 0.5);
+  publisher.publish(wrench("world", 0.0, 0.0, 0.0));
+}
+
 TEST_F(NodeBehaviour, WrenchDropsToZeroAfterTheTimeout) {
   Recorder<nav_msgs::Odometry> odom(nh_, "timed/odom");
   ros::Publisher publisher = advertiseWrench("timed");

@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 #include <rosgraph_msgs/Clock.h>
 
+#include "rigid_body_sim/GetState.h"
+
 #include "test_helpers.hpp"
 
 using namespace test_helpers;
@@ -102,6 +104,28 @@ TEST_F(SimTime, StampsFollowTheDrivenClockAndTimeJumpsAreHandled) {
     return !dropped.empty() && std::stoll(dropped) >= 9900 && Diagnostics::value(s, "max substeps in one tick") == "50";
   }, 5.0));
   EXPECT_NEAR(odom.messages.back().header.stamp.toSec(), now_, 0.05);  // publishing at the new time
+
+  // Past 2^31 s, where ros::Duration arithmetic would throw: the node goes on, stamps follow the clock.
+  publishClock(3e9);
+  spinFor(0.2);
+  advanceClock(3e9 + 0.5);
+  EXPECT_NEAR(odom.messages.back().header.stamp.toSec(), 3e9 + 0.5, 0.05);
+  // Toward the end of ROS time (2^32 s): the clock stops a margin before it (two timer periods + 10 s, here
+  // 10.04 s), the node says so in its diagnostics and still answers; it does not abort.
+  const double end = 4294967295.0 - 10.04;
+  publishClock(end - 2.0);
+  spinFor(0.2);
+  advanceClock(end + 3.0);
+  EXPECT_TRUE(diagnostics.waitFor("clocked_link", [](const diagnostic_msgs::DiagnosticStatus& s) {
+    return s.level == diagnostic_msgs::DiagnosticStatus::ERROR && s.message.find("end of") != std::string::npos;
+  }, 5.0));
+  const double last = odom.messages.back().header.stamp.toSec();
+  EXPECT_GE(last, end - 0.05);
+  EXPECT_LE(last, end + 1.0);
+  ros::ServiceClient get_state = nh_.serviceClient<rigid_body_sim::GetState>("clocked/get_state");
+  rigid_body_sim::GetState state;
+  ASSERT_TRUE(get_state.call(state));
+  EXPECT_NEAR(state.response.stamp.toSec(), last, 1e-6);
 }
 
 int main(int argc, char** argv) {

@@ -3,10 +3,11 @@
 #pragma once
 
 #include <diagnostic_updater/diagnostic_updater.h>
-#include <diagnostic_updater/update_functions.h>
 #include <ros/ros.h>
 
 #include <cstdint>
+#include <utility>
+#include <vector>
 
 #include "rigid_body_sim/ros/outputs.hpp"
 #include "rigid_body_sim/ros/parameters.hpp"
@@ -20,8 +21,8 @@ class NodeDiagnostics {
   NodeDiagnostics(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const NodeConfig& config,
                   const rigid_body::World& world, const WrenchInput& wrench_input, const Outputs& outputs);
 
-  /// A publication happened (for the rate status).
-  void tick() { publish_frequency_.tick(); }
+  /// A publication happened at `now` on the node's clock (for the rate status).
+  void tick(rigid_body::Nanoseconds now);
   /// A timer tick took longer than its period.
   void countOverrun() { ++timer_overruns_; }
   /// Reports if the diagnostics period has passed (diagnostic_updater's own rate limit).
@@ -31,15 +32,18 @@ class NodeDiagnostics {
 
  private:
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+  /// The publish rate over the last kFrequencyWindow reports, within ±10 % of `rate` (as diagnostic_updater's
+  /// FrequencyStatus, whose ros::Time subtraction throws after a jump of more than 2^31 s: here in ns).
+  void diagnoseFrequency(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   const NodeConfig& config_;
   const rigid_body::World& world_;
   const WrenchInput& wrench_input_;
   const Outputs& outputs_;
   diagnostic_updater::Updater updater_;
-  double min_frequency_;  ///< bounds of the publish-rate status [Hz]
-  double max_frequency_;
-  diagnostic_updater::FrequencyStatus publish_frequency_;
+  std::uint64_t ticks_ = 0;                          ///< publications since start-up
+  std::vector<std::pair<std::uint64_t, rigid_body::Nanoseconds>> window_;  ///< (ticks, time) at each report
+  rigid_body::Nanoseconds last_tick_ = 0;
   std::uint64_t timer_overruns_ = 0;
   std::uint64_t reported_problems_ = 0;  ///< rejections, drops and overruns at the last report
 };

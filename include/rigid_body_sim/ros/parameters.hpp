@@ -68,6 +68,9 @@ struct PublishConfig {
   bool odom = true;            ///< NAME/odom
   bool state = true;           ///< NAME/state
   bool applied_wrench = true;  ///< NAME/applied_wrench
+  /// NAME/get_state, NAME/set_state, NAME/apply_wrench: three registrations per body with the master
+  /// (~1 ms each), which a large scene that does not use them can leave out
+  bool body_services = true;
 };
 
 /// Everything the node needs: the scene-wide settings and its bodies, with the defaults of the README's

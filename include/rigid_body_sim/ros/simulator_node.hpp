@@ -7,6 +7,7 @@
 
 #include <ros/ros.h>
 
+#include <functional>
 #include <memory>
 
 #include "rigid_body_sim/ros/control_services.hpp"
@@ -46,6 +47,8 @@ class SimulatorNode {
   rigid_body::Nanoseconds now() const;
   /// The World's update and its report: the one code path of the timer and the lockstep driver.
   rigid_body::UpdateResult advance(rigid_body::Nanoseconds now);
+  /// Runs one tick, logging (throttled) instead of dying if anything in it throws.
+  void guarded(const std::function<void()>& tick);
   /// Logs what an update did that a user should hear about (drops, divergence, timeouts, jumps).
   void report(const rigid_body::UpdateResult& result);
   void publish();

@@ -1,6 +1,7 @@
 // Wrench messages into core commands: limits and finiteness checked (rejections counted by reason, warned
 // at most every few seconds), the frame resolved through tf2 once, at arrival, and the result handed to the
-// World stamped with its arrival. Owns the per-body wrench subscribers and the tf2 listener. A tf2 lookup
+// World stamped with its arrival. A frame that hangs below body_frame in the tf tree is part of the body:
+// its wrench is held in body axes (it turns with the body); any other frame's is held in world axes. Owns the per-body wrench subscribers and the tf2 listener. A tf2 lookup
 // never waits: the transform at the message's stamp if tf2 has it, else the latest one, else the wrench is
 // refused at once (a callback that waited would hold up the timer on the node's single spinner thread).
 #pragma once
@@ -61,6 +62,8 @@ class WrenchInput {
   void onWrenchUnstamped(std::size_t body, const geometry_msgs::Wrench& message);
   void submit(std::size_t body, const ConvertedWrench& converted);
   void warnUnknownFrame(const std::string& frame, const std::string& error);
+  /// True if `frame` has body_frame among its ancestors in the tf tree (it is attached to the body).
+  bool hangsBelow(const std::string& frame, const std::string& body_frame) const;
 
   const NodeConfig& config_;
   rigid_body::World& world_;
