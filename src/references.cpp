@@ -163,6 +163,38 @@ double logLogSlope(const std::vector<std::pair<double, double>>& points) {
   return leastSquaresSlope(logs);
 }
 
+State bodyFixedPush(const MassProperties& mass, const Eigen::Vector3d& F_B, const Eigen::Vector3d& r_B,
+                         double duration, double h) {
+  using Vector13 = Eigen::Matrix<double, 13, 1>;  // q (w, x, y, z), ω_B, x, v
+  const Eigen::Matrix3d& I = mass.inertia();
+  const Eigen::Matrix3d I_inv = I.inverse();
+  const Eigen::Vector3d tau_B = r_B.cross(F_B);
+  const auto rate = [&](const Vector13& y) {
+    const Eigen::Quaterniond q(y(0), y(1), y(2), y(3));
+    const Eigen::Vector3d w = y.segment<3>(4);
+    const Eigen::Quaterniond q_dot = q * Eigen::Quaterniond(0.0, w.x(), w.y(), w.z());
+    Vector13 d;
+    d << 0.5 * q_dot.w(), 0.5 * q_dot.x(), 0.5 * q_dot.y(), 0.5 * q_dot.z(), I_inv * (tau_B - w.cross(I * w)),
+        y.segment<3>(10), q.normalized().toRotationMatrix() * F_B / mass.mass();
+    return d;
+  };
+  Vector13 y = Vector13::Zero();
+  y(0) = 1.0;
+  const long steps = std::lround(duration / h);
+  for (long k = 0; k < steps; ++k) {
+    const Vector13 k1 = rate(y), k2 = rate(y + 0.5 * h * k1), k3 = rate(y + 0.5 * h * k2), k4 = rate(y + h * k3);
+    y += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    y.head<4>().normalize();
+  }
+  State state;
+  state.q_WB = Eigen::Quaterniond(y(0), y(1), y(2), y(3));
+  state.p_WB = y.segment<3>(7);
+  state.P_W = mass.mass() * y.segment<3>(10);
+  state.L_W = state.q_WB * (I * y.segment<3>(4));
+  state.t = duration;
+  return state;
+}
+
 const Eigen::Quaterniond& testOrientation() {
   static const Eigen::Quaterniond q0(Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()));
   return q0;

@@ -93,6 +93,14 @@ double leastSquaresSlope(const std::vector<std::pair<double, double>>& points);
 /// The same of log y against log x: the empirical order of a method when x is the step and y its error.
 double logLogSlope(const std::vector<std::pair<double, double>>& points);
 
+/// A body at rest at the origin (identity orientation), pushed for `duration` [s] by the body-fixed force F_B
+/// [N] at the body point r_B [m], with no closed form: integrated in the body-axes form (Landau & Lifshitz
+/// §36), I ω̇_B = τ_B − ω_B × I ω_B with τ_B = r_B × F_B constant in body axes, q̇ = ½ q ⊗ [0, ω_B],
+/// ẍ = R(q) F_B / M, by classic RK4 on (q, ω_B, x, v) with step h, q normalised after each step. Nothing here
+/// is shared with the integrators' momentum form Y = (x, q, P, L): a wrong lever arm or frame there shows.
+State bodyFixedPush(const MassProperties& mass, const Eigen::Vector3d& F_B, const Eigen::Vector3d& r_B,
+                    double duration, double h);
+
 // ---------------------------------------------------------------------------------------------------------
 // The test bodies the tests and the accuracy report share, so that a scene means the same in both.
 

@@ -231,9 +231,9 @@ std::map<std::string, LongRunSummary> runLongRun(const Options& options, const S
     }
     summary[integratorName(type)] = {worst_energy, worst_L, worst_q, reference::leastSquaresSlope(second_half)};
     rows.push_back({"long_run", integratorName(type), "max ||q| - 1| over " + steps + " steps",
-                    finite ? worst_q : INFINITY, "<= 1e-12", true, finite && worst_q <= 1e-12});
+                    finite ? worst_q : INFINITY, "<= 1e-12", true, finite && worst_q <= 1e-12, true});
     rows.push_back({"long_run", integratorName(type), "max |dL|/|L| (torque-free)", finite ? worst_L : INFINITY,
-                    "<= 1e-10", true, finite && worst_L <= 1e-10});
+                    "<= 1e-10", true, finite && worst_L <= 1e-10, true});
     const bool splitting = type == IntegratorType::kSymplecticSplitting, rk4 = type == IntegratorType::kRk4;
     const double energy_bound = splitting ? 2e-5 : 2e-4;
     rows.push_back({"long_run", integratorName(type), "max |dE/E|", finite ? worst_energy : INFINITY,
@@ -245,12 +245,13 @@ std::map<std::string, LongRunSummary> runLongRun(const Options& options, const S
 
 void writeStabilityCsv(const Options& options, const std::vector<StabilityRow>& rows) {
   std::ofstream stability(options.out + "/stability.csv");
-  stability << "case,integrator,metric,value,threshold,claimed,pass\n";
+  stability << "case,integrator,metric,value,threshold,claimed,pass,invariant\n";
   stability.precision(17);  // the value as measured: its verdict can be recomputed from the file
   for (const StabilityRow& row : rows) {
     stability << row.case_name << "," << row.integrator << ",\"" << row.metric << "\"," << row.value << ","
               << row.threshold << "," << (row.claimed ? "yes" : "no") << ","
-              << (row.threshold.empty() ? "n/a" : row.pass ? "yes" : "no") << "\n";
+              << (row.threshold.empty() ? "n/a" : row.pass ? "yes" : "no") << "," << (row.invariant ? "yes" : "no")
+              << "\n";
   }
 }
 

@@ -15,41 +15,6 @@ namespace {
 
 using reference::torqueFreeStart;
 
-// A body at rest at the origin, pushed by the body-fixed force F_B at the body point r_B, integrated in the
-// body-axes form (Landau & Lifshitz §36): I ω̇_B = τ_B − ω_B × I ω_B with τ_B = r_B × F_B constant in body
-// axes, q̇ = ½ q ⊗ [0, ω_B], ẍ = R(q) F_B / M; classic RK4 on (q, ω_B, x, v) with step h, q normalised
-// after each step. Nothing here is shared with the integrators' momentum form Y = (x, q, P, L).
-State bodyFrameReference(const MassProperties& mass, const Eigen::Vector3d& F_B, const Eigen::Vector3d& r_B,
-                         double duration, double h) {
-  using Vector13 = Eigen::Matrix<double, 13, 1>;  // q (w, x, y, z), ω_B, x, v
-  const Eigen::Matrix3d& I = mass.inertia();
-  const Eigen::Matrix3d I_inv = I.inverse();
-  const Eigen::Vector3d tau_B = r_B.cross(F_B);
-  const auto rate = [&](const Vector13& y) {
-    const Eigen::Quaterniond q(y(0), y(1), y(2), y(3));
-    const Eigen::Vector3d w = y.segment<3>(4);
-    const Eigen::Quaterniond q_dot = q * Eigen::Quaterniond(0.0, w.x(), w.y(), w.z());
-    Vector13 d;
-    d << 0.5 * q_dot.w(), 0.5 * q_dot.x(), 0.5 * q_dot.y(), 0.5 * q_dot.z(), I_inv * (tau_B - w.cross(I * w)),
-        y.segment<3>(10), q.normalized().toRotationMatrix() * F_B / mass.mass();
-    return d;
-  };
-  Vector13 y = Vector13::Zero();
-  y(0) = 1.0;
-  const long steps = std::lround(duration / h);
-  for (long k = 0; k < steps; ++k) {
-    const Vector13 k1 = rate(y), k2 = rate(y + 0.5 * h * k1), k3 = rate(y + 0.5 * h * k2), k4 = rate(y + h * k3);
-    y += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-    y.head<4>().normalize();
-  }
-  State state;
-  state.q_WB = Eigen::Quaterniond(y(0), y(1), y(2), y(3));
-  state.p_WB = y.segment<3>(7);
-  state.P_W = mass.mass() * y.segment<3>(10);
-  state.L_W = state.q_WB * (I * y.segment<3>(4));
-  state.t = duration;
-  return state;
-}
 const Eigen::Quaterniond& kQ0 = reference::testOrientation();
 
 // Exempt from the triangle inequality: the report uses Principia's published top I = (3, 3, 9).
@@ -109,7 +74,7 @@ std::vector<Scene> workPrecisionScenes() {
   // The torque (0, 0.05, −0.1) N m is off every principal axis, so the box tumbles in 3-D (a point in the
   // x–y plane would give a planar spin that kick–drift–kick methods integrate exactly).
   // No closed form: the reference integrates another formulation of the same physics with code of its own
-  // (bodyFrameReference: Euler's equations in body axes), so a wrong lever arm or frame in the step's
+  // (reference::bodyFixedPush: Euler's equations in body axes), so a wrong lever arm or frame in the step's
   // momentum form would show up as an error here instead of being copied into the reference.
   {
     Scene push{"off_centre_push", "default box pushed off centre: 1 N along body x at body (0, 0.1, 0.05), 5 s",
@@ -117,7 +82,7 @@ std::vector<Scene> workPrecisionScenes() {
                State(), AppliedWrench(), 5.0, ErrorMetric::kOrientation, State()};
     push.input.body.force = Eigen::Vector3d(1.0, 0.0, 0.0);
     push.input.body.torque = Eigen::Vector3d(0.0, 0.1, 0.05).cross(push.input.body.force);
-    push.reference = bodyFrameReference(push.model.mass, Eigen::Vector3d(1.0, 0.0, 0.0), Eigen::Vector3d(0.0, 0.1, 0.05),
+    push.reference = reference::bodyFixedPush(push.model.mass, Eigen::Vector3d(1.0, 0.0, 0.0), Eigen::Vector3d(0.0, 0.1, 0.05),
                                         push.duration, 1e-5);
     scenes.push_back(push);
   }

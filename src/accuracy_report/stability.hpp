@@ -15,6 +15,10 @@ struct StabilityRow {
   std::string threshold;   ///< the rule, e.g. "<= 1e-4"; empty when only reported
   bool claimed;            ///< whether this method claims the threshold
   bool pass;               ///< value meets the threshold (meaningful when threshold is set)
+  /// An invariant: a property every method keeps by construction (|q| = 1 after its own normalisation, world
+  /// L with no torque, a finite result, the energy bounds of a unit q). Reported in its own table, checked,
+  /// and never counted as an accuracy or stability claim.
+  bool invariant = false;
 };
 
 /// Runs the suite. `quick` shortens the long run (10⁵ instead of 10⁶ steps) and the bisections.

@@ -36,8 +36,11 @@ void OdometryNoise::publish(const nav_msgs::Odometry& truth, const ros::Time& st
   tf2::fromMsg(truth.twist.twist.linear, v);
   tf2::fromMsg(truth.twist.twist.angular, w);
   noisy.pose.pose.position = tf2::toMsg(Eigen::Vector3d(p + draw(noise_.position_stddev)));
+  // A small rotation about the world axes, exp(δ_W) ⊗ q: the pose covariance is declared in the pose's frame
+  // (header.frame_id, REP 105), so its rotation block diag(σ²) is about the world axes too. (Drawn in body
+  // axes, q ⊗ exp(δ_B), the noise about world axis i of a turned body would be another axis's σ.)
   noisy.pose.pose.orientation =
-      tf2::toMsg(Eigen::Quaterniond(q * rigid_body::quaternionExp(draw(noise_.orientation_stddev))));
+      tf2::toMsg(Eigen::Quaterniond(rigid_body::quaternionExp(draw(noise_.orientation_stddev)) * q));
   tf2::toMsg(Eigen::Vector3d(v + draw(noise_.linear_velocity_stddev)), noisy.twist.twist.linear);
   tf2::toMsg(Eigen::Vector3d(w + draw(noise_.angular_velocity_stddev)), noisy.twist.twist.angular);
   // Covariances consistent with the noise: diagonal variances, (x, y, z, rotation about x, y, z).

@@ -3,6 +3,7 @@
 // and bit-for-bit reproducibility of a stepped run.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <rosgraph_msgs/Clock.h>
@@ -172,6 +173,12 @@ TEST_F(Control, LockstepRunsFasterThanRealTimeAndResetKeepsStampsIncreasing) {
 
 TEST_F(Control, NoisyOdometryHasTheConfiguredStatisticsAndCovariances) {
   resetTime();
+  pause();
+  // Turned 90° about world z, at rest: body x is world y. The noise must have the declared covariance in the
+  // frames the message declares: pose (position and orientation) about the world axes, twist in body axes.
+  rigid_body_sim::SetState turn;
+  turn.request.pose.orientation = tf2::toMsg(Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ())));
+  ASSERT_TRUE(call("set_state", turn).response.success);
   Recorder<nav_msgs::Odometry> truth(nh_, "lock/odom");
   Recorder<nav_msgs::Odometry> noisy(nh_, "lock/odom_noisy");
   ASSERT_TRUE(truth.waitForConnection() && noisy.waitForConnection());
@@ -180,19 +187,41 @@ TEST_F(Control, NoisyOdometryHasTheConfiguredStatisticsAndCovariances) {
   pause();
   std::map<double, const nav_msgs::Odometry*> by_stamp;
   for (const auto& message : truth.messages) by_stamp[message.header.stamp.toSec()] = &message;
-  Eigen::Array3d sum = Eigen::Array3d::Zero(), sum2 = Eigen::Array3d::Zero();
+  // Errors of the noisy copy against the truth at the same stamp: position and the rotation exp(δ_W) in world
+  // axes, linear and angular velocity in body axes.
+  enum { kPosition, kOrientation, kLinear, kAngular, kQuantities };
+  std::array<Eigen::Array3d, kQuantities> sum, sum2;
+  for (int k = 0; k < kQuantities; ++k) sum[k] = sum2[k] = Eigen::Array3d::Zero();
   int n = 0;
   for (const auto& message : noisy.messages) {
     const auto found = by_stamp.find(message.header.stamp.toSec());
     if (found == by_stamp.end()) continue;
-    const Eigen::Array3d d = (position(message) - position(*found->second)).array();
-    sum += d, sum2 += d * d, ++n;
+    const nav_msgs::Odometry& exact = *found->second;
+    Eigen::Quaterniond q_noisy, q_exact;
+    tf2::fromMsg(message.pose.pose.orientation, q_noisy);
+    tf2::fromMsg(exact.pose.pose.orientation, q_exact);
+    const Eigen::AngleAxisd delta(q_noisy * q_exact.conjugate());  // exp(δ_W) = q_noisy q_exact⁻¹
+    const std::array<Eigen::Array3d, kQuantities> d = {
+        (position(message) - position(exact)).array(), (delta.angle() * delta.axis()).array(),
+        (vec(message.twist.twist.linear) - vec(exact.twist.twist.linear)).array(),
+        (vec(message.twist.twist.angular) - vec(exact.twist.twist.angular)).array()};
+    for (int k = 0; k < kQuantities; ++k) sum[k] += d[k], sum2[k] += d[k] * d[k];
+    ++n;
   }
   ASSERT_GT(n, 1000);
-  const Eigen::Array3d stddev = (sum2 / n - (sum / n).square()).sqrt();
-  // Sample standard deviation of n normals: relative standard error 1/√(2n) ≈ 2 %; 4 of them allowed.
-  const Eigen::Array3d configured(0.01, 0.02, 0.03);
-  for (int i = 0; i < 3; ++i) EXPECT_NEAR(stddev(i) / configured(i), 1.0, 4.0 / std::sqrt(2.0 * n)) << i;
+  // Root mean square about zero (not about the sample mean, so a biased noise fails) against the configured
+  // deviation: the relative standard error of n normals' RMS is 1/√(2n) ≈ 2 %, 4 of them allowed; the mean
+  // within 4 σ/√n of zero.
+  const std::array<Eigen::Array3d, kQuantities> configured = {
+      Eigen::Array3d(0.01, 0.02, 0.03), Eigen::Array3d(0.001, 0.002, 0.003), Eigen::Array3d(0.1, 0.1, 0.1),
+      Eigen::Array3d(0.05, 0.05, 0.05)};
+  for (int k = 0; k < kQuantities; ++k) {
+    for (int i = 0; i < 3; ++i) {
+      const double rms = std::sqrt(sum2[k](i) / n), mean = sum[k](i) / n;
+      EXPECT_NEAR(rms / configured[k](i), 1.0, 4.0 / std::sqrt(2.0 * n)) << "quantity " << k << ", axis " << i;
+      EXPECT_LT(std::abs(mean), 4.0 * configured[k](i) / std::sqrt(n)) << "quantity " << k << ", axis " << i;
+    }
+  }
   const auto& covariance = noisy.messages.back().pose.covariance;
   EXPECT_DOUBLE_EQ(covariance[0], 1e-4);
   EXPECT_DOUBLE_EQ(covariance[7], 4e-4);

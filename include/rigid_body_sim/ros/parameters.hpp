@@ -30,7 +30,7 @@ class ParameterError : public std::runtime_error {
 /// Optional Gaussian noise on a copy of the odometry (odom_noisy); all zero: no noisy copy at all.
 struct NoiseConfig {
   Eigen::Vector3d position_stddev = Eigen::Vector3d::Zero();          ///< [m], world axes
-  Eigen::Vector3d orientation_stddev = Eigen::Vector3d::Zero();       ///< [rad], small rotation in body axes
+  Eigen::Vector3d orientation_stddev = Eigen::Vector3d::Zero();       ///< [rad], small rotation about world axes
   Eigen::Vector3d linear_velocity_stddev = Eigen::Vector3d::Zero();   ///< [m/s], body axes
   Eigen::Vector3d angular_velocity_stddev = Eigen::Vector3d::Zero();  ///< [rad/s], body axes
   int seed = 1;                                                        ///< the generator's seed (reproducible)
