@@ -15,10 +15,24 @@
 #include <string>
 
 #include "measurements.hpp"
+#include "rigid_body_sim/integrators.hpp"
 
 using namespace accuracy_report;
 
 namespace {
+
+// "rk4:explicit_euler" → substitute(kRk4, kExplicitEuler); false if either name is unknown.
+bool parseSubstitution(const std::string& text) {
+  const std::size_t colon = text.find(':');
+  if (colon == std::string::npos) return false;
+  try {
+    substitute(rigid_body::integratorFromName(text.substr(0, colon)),
+               rigid_body::integratorFromName(text.substr(colon + 1)));
+  } catch (const std::invalid_argument&) {
+    return false;
+  }
+  return true;
+}
 
 bool parseOptions(int argc, char** argv, Options& options, int& exit_code) {
   for (int i = 1; i < argc; ++i) {
@@ -27,10 +41,18 @@ bool parseOptions(int argc, char** argv, Options& options, int& exit_code) {
       options.quick = true;
     } else if (arg == "--out" && i + 1 < argc) {
       options.out = argv[++i];
+    } else if (arg == "--only-stability") {
+      options.only_stability = true;
+    } else if (arg == "--substitute" && i + 1 < argc && parseSubstitution(argv[++i])) {
+      options.substituted = true;
     } else {
-      std::cerr << "usage: accuracy_report [--out DIR] [--quick]\n"
+      std::cerr << "usage: accuracy_report [--out DIR] [--quick] [--only-stability] [--substitute CLAIMED:RUN]\n"
                    "  writes work_precision.csv, order.csv, control_rate.csv, error_growth.csv, stability.csv,\n"
-                   "  their PNG figures (with gnuplot) and REPORT.md into DIR (default ./report)\n";
+                   "  their PNG figures (with gnuplot) and REPORT.md into DIR (default ./report).\n"
+                   "  --only-stability: the stiff and extreme suite only (stability.csv).\n"
+                   "  --substitute CLAIMED:RUN: runs method RUN wherever CLAIMED is named (a mutation check:\n"
+                   "  CLAIMED's claims should then fail if RUN is of lower order). Methods: " +
+                       rigid_body::integratorNameList() + "\n";
       exit_code = arg == "--help" || arg == "-h" ? 0 : 2;
       return false;
     }
@@ -56,6 +78,15 @@ int main(int argc, char** argv) {
   const std::string machine = machineDescription();
   std::cerr << "accuracy_report: " << (options.quick ? "quick" : "full") << " run on " << machine << "\n";
 
+  if (options.substituted) std::cerr << "accuracy_report: methods substituted: the numbers are a mutation check\n";
+  if (options.only_stability) {
+    const std::vector<StabilityRow> rows = runStabilitySuite(options.quick);
+    writeStabilityCsv(options, rows);
+    const std::pair<int, int> claims = countClaims(rows);
+    std::cerr << "accuracy_report: wrote " << options.out << "/stability.csv; " << claims.second << " of "
+              << claims.first << " claimed thresholds met\n";
+    return 0;
+  }
   Results results;
   results.scenes = workPrecisionScenes();
   results.at_control_step = runWorkPrecision(options, sweep, results.scenes);

@@ -56,7 +56,7 @@ constexpr double kMinTimedSpan = 0.01;  // [s]
 Timed timeRun(const Scene& scene, IntegratorType type, const IntegratorSettings& settings, double h, int repeats) {
   Timed result{0, 0, 0, 0};
   {  // the warm-up, which also gives the error and the work counters
-    Integrator integrator(type, settings);
+    Integrator integrator = makeIntegrator(type, settings);
     result.error = errorOf(scene, runScene(scene, integrator, h));
     result.rhs_evaluations = integrator.statistics().rhs_evaluations;
     result.steps = integrator.statistics().steps;
@@ -67,7 +67,7 @@ Timed timeRun(const Scene& scene, IntegratorType type, const IntegratorSettings&
     const double start = cpuSeconds();
     double elapsed = 0.0;
     do {
-      Integrator integrator(type, settings);
+      Integrator integrator = makeIntegrator(type, settings);
       const State end = runScene(scene, integrator, h);
       asm volatile("" : : "r"(&end) : "memory");  // keep the run
       ++runs;
@@ -164,7 +164,7 @@ std::map<std::string, double> runOrder(const Options& options) {
     std::vector<std::pair<double, double>> points;
     for (int i = 0; i < 4; ++i) {
       const double h = h0 / std::pow(2.0, i);
-      Integrator integrator(type);
+      Integrator integrator = makeIntegrator(type);
       points.push_back({h, errorOf(scene, runScene(scene, integrator, h))});
     }
     const double slope = reference::logLogSlope(points);
@@ -208,7 +208,7 @@ std::map<std::string, LongRunSummary> runLongRun(const Options& options, const S
   const long every = sweep.long_run_steps / kGrowthSamples;
   const std::string steps = formatNumber(static_cast<double>(sweep.long_run_steps), 2);
   for (IntegratorType type : allIntegrators()) {
-    Integrator integrator(type);
+    Integrator integrator = makeIntegrator(type);
     State state = scene.initial;
     double worst_energy = 0, worst_L = 0, worst_q = 0;
     std::vector<std::pair<double, double>> second_half;  // (t, dE/E) for the drift rate

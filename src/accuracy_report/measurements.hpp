@@ -16,6 +16,8 @@ namespace accuracy_report {
 struct Options {
   std::string out = "report";
   bool quick = false;
+  bool only_stability = false;  ///< the stiff and extreme suite alone
+  bool substituted = false;     ///< --substitute was given
 };
 
 // The sweeps. --quick thins them so the whole report takes seconds (for the test).

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "rigid_body_sim/kinematics.hpp"
 #include "rigid_body_sim/references.hpp"
@@ -22,6 +23,8 @@ Model principalBody(const Eigen::Vector3d& moments) {
   return reference::principalBody(moments, 1.0, InertiaCheck::kPositiveDefiniteOnly);
 }
 
+}  // namespace
+
 Scene torqueFreeScene(const std::string& name, const std::string& description, const Eigen::Vector3d& I,
                       const Eigen::Vector3d& m0, double duration) {
   Scene scene{name, description, principalBody(I), torqueFreeStart(m0), AppliedWrench(), duration,
@@ -32,7 +35,20 @@ Scene torqueFreeScene(const std::string& name, const std::string& description, c
   return scene;
 }
 
+
+namespace {
+std::map<IntegratorType, IntegratorType>& substitutions() {
+  static std::map<IntegratorType, IntegratorType> map;
+  return map;
+}
 }  // namespace
+
+void substitute(IntegratorType claimed, IntegratorType run) { substitutions()[claimed] = run; }
+
+Integrator makeIntegrator(IntegratorType type, const IntegratorSettings& settings) {
+  const auto found = substitutions().find(type);
+  return Integrator(found == substitutions().end() ? type : found->second, settings);
+}
 
 Scene asymmetricScene(double duration) {
   return torqueFreeScene("asymmetric", "torque-free asymmetric body I = (1, 2, 3), m0 = (1, 0.5, 2)",

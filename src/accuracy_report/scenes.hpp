@@ -36,6 +36,20 @@ std::vector<Scene> workPrecisionScenes();
 /// The asymmetric body I = (1, 2, 3), m₀ = (1, 0.5, 2) over `duration` with its closed-form reference.
 Scene asymmetricScene(double duration);
 
+/// A torque-free body with principal moments I along the body axes and body momentum m0, with its
+/// closed-form reference at `duration` (I₁ < I₂ < I₃).
+Scene torqueFreeScene(const std::string& name, const std::string& description, const Eigen::Vector3d& I,
+                      const Eigen::Vector3d& m0, double duration);
+
+/// --substitute CLAIMED:RUN: every run of the report that names method CLAIMED integrates with method RUN
+/// instead, while the rows still say CLAIMED. A mutation check: a lower-order method put in a method's place
+/// must fail that method's claims (test_accuracy_report does it for every method that has a lower order).
+void substitute(rigid_body::IntegratorType claimed, rigid_body::IntegratorType run);
+
+/// The integrator a run of `type` uses: `type` itself unless substituted.
+rigid_body::Integrator makeIntegrator(rigid_body::IntegratorType type,
+                                      const rigid_body::IntegratorSettings& settings = rigid_body::IntegratorSettings());
+
 /// Runs `scene` with `integrator` at step h; returns the final state (t = T).
 rigid_body::State runScene(const Scene& scene, rigid_body::Integrator& integrator, double h);
 

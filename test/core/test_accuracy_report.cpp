@@ -121,15 +121,15 @@ TEST_F(AccuracyReport, Rk4BeatsExplicitEulerByOrdersOfMagnitudeAtEqualStep) {
   EXPECT_EQ(compared, 8);
 }
 
-// The verdict of `value` against a threshold written "<= X" or "= X", recomputed here rather than read from
+// The verdict of `value` against a threshold written "<= X", ">= X" or "= X", recomputed here rather than read from
 // the report's own pass column.
 bool meets(double value, const std::string& threshold) {
   std::istringstream in(threshold);
   std::string op;
   double bound = 0.0;
   in >> op >> bound;
-  EXPECT_TRUE(in && (op == "<=" || op == "=")) << "unreadable threshold '" << threshold << "'";
-  return op == "<=" ? value <= bound : value == bound;
+  EXPECT_TRUE(in && (op == "<=" || op == ">=" || op == "=")) << "unreadable threshold '" << threshold << "'";
+  return op == "<=" ? value <= bound : op == ">=" ? value >= bound : value == bound;
 }
 
 TEST_F(AccuracyReport, EveryClaimedThresholdIsMet) {
@@ -158,6 +158,41 @@ TEST_F(AccuracyReport, EveryClaimedThresholdIsMet) {
     EXPECT_TRUE(cases.count(name)) << name;
   }
 }
+
+// The claims can fail: with a lower-order method run in a method's place (--substitute CLAIMED:RUN), some
+// claim of CLAIMED must fail, by the verdict recomputed here. First-order methods have no lower-order method
+// to stand in for them; their order claim is the one a frozen (order 0) update would fail.
+class Mutation : public ::testing::TestWithParam<std::pair<const char*, const char*>> {};
+
+TEST_P(Mutation, ALowerOrderMethodInAMethodsPlaceFailsItsClaims) {
+  const std::string claimed = GetParam().first, run = GetParam().second;
+  char pattern[] = "/tmp/accuracy_report_mutation_XXXXXX";
+  const std::string directory = mkdtemp(pattern);
+  const std::string command = std::string(ACCURACY_REPORT_PATH) + " --quick --only-stability --substitute " + claimed +
+                              ":" + run + " --out " + directory + " 2>/dev/null";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  int claims = 0, failed = 0;
+  for (const auto& row : readCsv(directory + "/stability.csv")) {
+    if (row.at("integrator") != claimed || row.at("claimed") != "yes" || row.at("invariant") == "yes" ||
+        row.at("threshold").empty()) {
+      continue;
+    }
+    ++claims;
+    if (!meets(std::stod(row.at("value")), row.at("threshold"))) ++failed;
+  }
+  std::system(("rm -rf " + directory).c_str());
+  EXPECT_GT(claims, 0) << claimed << " claims nothing";
+  EXPECT_GT(failed, 0) << claimed << "'s " << claims << " claims all held with " << run << " in its place";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    LowerOrderStandIns, Mutation,
+    ::testing::Values(std::make_pair("rk4", "symplectic_splitting"), std::make_pair("rkmk4", "buss"),
+                      std::make_pair("buss", "explicit_euler"), std::make_pair("symplectic_splitting", "semi_implicit_euler"),
+                      std::make_pair("implicit_midpoint", "explicit_euler"), std::make_pair("dopri5", "rk4")),
+    [](const ::testing::TestParamInfo<std::pair<const char*, const char*>>& info) {
+      return std::string(info.param.first) + "_as_" + info.param.second;
+    });
 
 TEST_F(AccuracyReport, ErrorGrowthCoversEveryIntegrator) {
   std::map<std::string, int> samples;
