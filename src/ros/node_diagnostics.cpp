@@ -110,6 +110,12 @@ void NodeDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat
   bool timed_out = false;
   for (std::size_t body = 0; body < bodies; ++body) timed_out = timed_out || world_.wrenchTimedOut(body);
   status.add("wrench timed out", timed_out ? "true" : "false");
+  addBodies(status);
+}
+
+void NodeDiagnostics::addBodies(diagnostic_updater::DiagnosticStatusWrapper& status) const {
+  const rigid_body::Scene& scene = world_.scene();
+  const std::size_t bodies = scene.bodyCount();
   // Drift per body, keyed by the body frame when the scene has several.
   for (std::size_t body = 0; body < bodies; ++body) {
     const rigid_body::Model& model = scene.model(body);

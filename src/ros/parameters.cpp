@@ -1,5 +1,7 @@
 #include "rigid_body_sim/ros/parameters.hpp"
 
+#include "parameter_values.hpp"
+
 #include <ros/node_handle.h>
 #include <ros/package.h>
 #include <ros/param.h>
@@ -22,7 +24,7 @@ namespace rigid_body_ros {
 
 namespace {
 
-using XmlRpc::XmlRpcValue;
+using namespace parameter_values;
 
 // The largest rate the timer is asked for; beyond it a ROS timer cannot keep its period anyway.
 constexpr double kMaxRate = 10000.0;
@@ -53,155 +55,6 @@ const std::set<std::string> kPublishNames = {"tf", "odom", "state", "applied_wre
 const std::set<std::string> kNoiseNames = {"position_stddev", "orientation_stddev", "linear_velocity_stddev",
                                            "angular_velocity_stddev", "seed", "delay"};
 const std::set<std::string> kInitialNames = {"position", "orientation", "linear_velocity", "angular_velocity"};
-
-std::string render(const XmlRpcValue& value) {
-  XmlRpcValue copy = value;  // the XmlRpc accessors are not const
-  std::ostringstream out;
-  out.precision(17);
-  switch (copy.getType()) {
-    case XmlRpcValue::TypeInt:
-      out << static_cast<int>(copy);
-      break;
-    case XmlRpcValue::TypeDouble:
-      out << static_cast<double>(copy);
-      break;
-    case XmlRpcValue::TypeBoolean:
-      out << (static_cast<bool>(copy) ? "true" : "false");
-      break;
-    case XmlRpcValue::TypeString:
-      out << "'" << static_cast<std::string>(copy) << "'";
-      break;
-    case XmlRpcValue::TypeArray:
-      out << "[";
-      for (int i = 0; i < copy.size(); ++i) out << (i ? ", " : "") << render(copy[i]);
-      out << "]";
-      break;
-    case XmlRpcValue::TypeStruct:
-      out << "{...}";
-      break;
-    default:
-      out << "(unset)";
-  }
-  return out.str();
-}
-
-[[noreturn]] void fail(const std::string& name, const XmlRpcValue& value, const std::string& allowed) {
-  throw ParameterError("parameter ~" + name + " = " + render(value) + ": " + allowed);
-}
-
-bool isNumber(const XmlRpcValue& value) {
-  return value.getType() == XmlRpcValue::TypeInt || value.getType() == XmlRpcValue::TypeDouble;
-}
-
-double asNumber(const XmlRpcValue& value) {
-  XmlRpcValue copy = value;
-  return copy.getType() == XmlRpcValue::TypeInt ? static_cast<double>(static_cast<int>(copy))
-                                                : static_cast<double>(copy);
-}
-
-// Looks up a/b/c in nested structs; returns nullptr when it is not set.
-const XmlRpcValue* find(const XmlRpcValue& params, const std::string& name) {
-  const XmlRpcValue* node = &params;
-  std::istringstream path(name);
-  std::string key;
-  while (std::getline(path, key, '/')) {
-    if (node->getType() != XmlRpcValue::TypeStruct || !node->hasMember(key)) return nullptr;
-    node = &(*node)[key];
-  }
-  return node;
-}
-
-// A number in [low, high] (bounds given as text for the message); `accept` says whether value fits.
-template <typename Accept>
-double readNumber(const XmlRpcValue& params, const std::string& name, double fallback, Accept accept,
-                  const std::string& allowed) {
-  const XmlRpcValue* value = find(params, name);
-  if (!value) return fallback;
-  if (!isNumber(*value)) fail(name, *value, allowed);
-  const double number = asNumber(*value);
-  if (!std::isfinite(number) || !accept(number)) fail(name, *value, allowed);
-  return number;
-}
-
-// An integer >= minimum (a double is refused: a count or a seed is not a measurement).
-int readInteger(const XmlRpcValue& params, const std::string& name, int fallback, int minimum,
-                const std::string& allowed) {
-  const XmlRpcValue* value = find(params, name);
-  if (!value) return fallback;
-  if (value->getType() != XmlRpcValue::TypeInt || static_cast<const int&>(*value) < minimum) {
-    fail(name, *value, allowed);
-  }
-  return static_cast<const int&>(*value);
-}
-
-// roscpp turns a rosrun argument _size:=[0.4,0.2,0.1] into the string "[0.4,0.2,0.1]" (it parses only
-// scalars), so a list may come as text: "[a, b, ...]" of numbers becomes an XmlRpc array.
-bool parseListText(const std::string& text, XmlRpcValue& array) {
-  const size_t open = text.find_first_not_of(" \t");
-  const size_t close = text.find_last_not_of(" \t");
-  if (open == std::string::npos || text[open] != '[' || text[close] != ']') return false;
-  std::istringstream items(text.substr(open + 1, close - open - 1));
-  std::string item;
-  array.setSize(0);
-  int index = 0;
-  while (std::getline(items, item, ',')) {
-    char* end = nullptr;
-    const double number = std::strtod(item.c_str(), &end);
-    if (end == item.c_str() || item.find_first_not_of(" \t", end - item.c_str()) != std::string::npos) return false;
-    array[index++] = number;
-  }
-  return true;
-}
-
-std::vector<double> readNumbers(const XmlRpcValue& params, const std::string& name, std::vector<double> fallback,
-                                size_t length, const std::string& allowed) {
-  const XmlRpcValue* value = find(params, name);
-  if (!value) return fallback;
-  XmlRpcValue copy = *value;
-  if (copy.getType() == XmlRpcValue::TypeString) {
-    XmlRpcValue parsed;
-    if (parseListText(static_cast<std::string>(copy), parsed)) copy = parsed;
-  }
-  if (copy.getType() != XmlRpcValue::TypeArray || static_cast<size_t>(copy.size()) != length) {
-    fail(name, *value, allowed);
-  }
-  std::vector<double> numbers;
-  for (int i = 0; i < copy.size(); ++i) {
-    if (!isNumber(copy[i]) || !std::isfinite(asNumber(copy[i]))) fail(name, *value, allowed);
-    numbers.push_back(asNumber(copy[i]));
-  }
-  return numbers;
-}
-
-Eigen::Vector3d readVector3(const XmlRpcValue& params, const std::string& name, const std::string& unit) {
-  const std::vector<double> v =
-      readNumbers(params, name, {0.0, 0.0, 0.0}, 3, "must be a list of 3 finite numbers [x, y, z] " + unit);
-  return Eigen::Vector3d(v[0], v[1], v[2]);
-}
-
-std::string readString(const XmlRpcValue& params, const std::string& name, const std::string& fallback,
-                       const std::string& allowed) {
-  const XmlRpcValue* value = find(params, name);
-  if (!value) return fallback;
-  if (value->getType() != XmlRpcValue::TypeString) fail(name, *value, allowed);
-  return static_cast<const std::string&>(*value);
-}
-
-std::string readFrame(const XmlRpcValue& params, const std::string& name, const std::string& fallback) {
-  const std::string allowed = "must be a non-empty tf2 frame id without a leading '/'";
-  const std::string frame = readString(params, name, fallback, allowed);
-  if (frame.empty() || frame.front() == '/' || frame.find(' ') != std::string::npos) {
-    fail(name, *find(params, name), allowed);
-  }
-  return frame;
-}
-
-bool readBool(const XmlRpcValue& params, const std::string& name, bool fallback) {
-  const XmlRpcValue* value = find(params, name);
-  if (!value) return fallback;
-  if (value->getType() != XmlRpcValue::TypeBoolean) fail(name, *value, "must be true or false");
-  return static_cast<const bool&>(*value);
-}
 
 // shape: mesh. The body frame is the mesh's centre of mass, with the mesh's axes or its principal axes.
 rigid_body::MassProperties readMeshMassProperties(const XmlRpcValue& params, BodyConfig& config) {
@@ -252,12 +105,6 @@ rigid_body::MassProperties readMeshMassProperties(const XmlRpcValue& params, Bod
   } catch (const rigid_body::InvalidMassProperties& error) {
     fail("mesh", *find(params, "mesh"), std::string("gives no physical inertia: ") + error.what());
   }
-}
-
-// A key that groups others must be a struct: `_publish:=5` or `noise: loud` is an error, not "unset".
-void requireStruct(const XmlRpcValue& params, const std::string& name, const std::string& keys) {
-  const XmlRpcValue* value = find(params, name);
-  if (value && value->getType() != XmlRpcValue::TypeStruct) fail(name, *value, "must be a struct of " + keys);
 }
 
 rigid_body::MassProperties readMassProperties(const XmlRpcValue& params, BodyConfig& config) {
@@ -317,15 +164,6 @@ rigid_body::MassProperties readMassProperties(const XmlRpcValue& params, BodyCon
     const XmlRpcValue* given_mass = find(params, "mass");
     fail(size ? "size" : "mass", size ? *size : given_mass ? *given_mass : XmlRpcValue(mass),
          "with ~mass = " + rigid_body::formatNumber(mass) + " gives no usable inertia: " + error.what());
-  }
-}
-
-void collectUnknown(const XmlRpcValue& params, const std::string& prefix, const std::set<std::string>& known,
-                    std::vector<std::string>& unknown) {
-  XmlRpcValue copy = params;
-  if (copy.getType() != XmlRpcValue::TypeStruct) return;
-  for (const auto& member : copy) {
-    if (!known.count(member.first)) unknown.push_back(prefix + member.first);
   }
 }
 
@@ -433,16 +271,8 @@ std::vector<BodyConfig> parseBodies(const XmlRpcValue& params, const NodeConfig&
   return bodies;
 }
 
-}  // namespace
-
-NodeConfig parseConfig(const XmlRpcValue& params) {
-  NodeConfig config;
-  if (params.getType() != XmlRpcValue::TypeStruct && params.getType() != XmlRpcValue::TypeInvalid) {
-    throw ParameterError("the private namespace ~ = " + render(params) +
-                         ": must hold the node's parameters as named keys (a struct), not a single value");
-  }
-  requireStruct(params, "publish", "tf, odom, state, applied_wrench, body_services (true or false)");
-  requireStruct(params, "noise", "position_stddev, orientation_stddev, linear_velocity_stddev, angular_velocity_stddev, seed, delay");
+// rate, dt, the integrator and its settings.
+void readTiming(const XmlRpcValue& params, NodeConfig& config) {
   config.rate = readNumber(params, "rate", config.rate, [](double r) { return r > 0.0 && r <= kMaxRate; },
                            "must be a finite number in (0, 10000] [Hz]");
   if (config.rate < kMinRate) fail("rate", *find(params, "rate"), "must be >= 0.001 [Hz] (a timer period of at most 1000 s)");
@@ -468,11 +298,10 @@ NodeConfig parseConfig(const XmlRpcValue& params) {
   config.integrator_settings.rel_tolerance =
       readNumber(params, "rel_tolerance", config.integrator_settings.rel_tolerance, tolerance,
                  "must be a finite number in [1e-15, 1] (dopri5's relative error per step)");
-  config.world_frame = readFrame(params, "world_frame", config.world_frame);
-  config.gravity_W = readVector3(params, "gravity", "[m/s^2]");
-  std::vector<std::string> unknown_in_bodies;  // reported after the top-level names
-  config.bodies = parseBodies(params, config, unknown_in_bodies);
+}
 
+// The wrench limits, the divergence guard and the step caps.
+void readLimits(const XmlRpcValue& params, NodeConfig& config) {
   config.wrench_timeout = readNumber(params, "wrench_timeout", 0.0, [](double t) { return t >= 0.0; },
                                      "must be a finite number >= 0 [s] (0: hold until the next wrench)");
   // Not set: no limit (the check still runs and refuses non-finite wrenches).
@@ -493,6 +322,10 @@ NodeConfig parseConfig(const XmlRpcValue& params) {
   config.max_body_steps_per_request =
       readInteger(params, "max_body_steps_per_request", static_cast<int>(config.max_body_steps_per_request), 1,
                   "must be an integer >= 1 (steps x bodies one step request may ask for)");
+}
+
+// The outputs and the simulation control.
+void readOutputs(const XmlRpcValue& params, NodeConfig& config) {
   // publish_tf is the older spelling of publish/tf; publish/tf wins when both are set.
   config.publish.tf = readBool(params, "publish/tf", readBool(params, "publish_tf", true));
   config.publish.odom = readBool(params, "publish/odom", true);
@@ -503,28 +336,56 @@ NodeConfig parseConfig(const XmlRpcValue& params) {
   config.real_time_factor = readNumber(params, "real_time_factor", 1.0, [](double f) { return f >= 0.0; },
                                        "must be a finite number >= 0 (0: as fast as possible)");
   config.start_paused = readBool(params, "start_paused", false);
+}
+
+NoiseConfig readNoise(const XmlRpcValue& params) {
+  NoiseConfig noise;
   const auto readStddev = [&](const std::string& name, const std::string& unit) {
     const Eigen::Vector3d v = readVector3(params, "noise/" + name, unit);
     if ((v.array() < 0.0).any()) fail("noise/" + name, *find(params, "noise/" + name), "must be 3 numbers >= 0 " + unit);
     return v;
   };
-  config.noise.position_stddev = readStddev("position_stddev", "[m]");
-  config.noise.orientation_stddev = readStddev("orientation_stddev", "[rad]");
-  config.noise.linear_velocity_stddev = readStddev("linear_velocity_stddev", "[m/s]");
-  config.noise.angular_velocity_stddev = readStddev("angular_velocity_stddev", "[rad/s]");
-  config.noise.delay = readNumber(params, "noise/delay", 0.0, [](double d) { return d >= 0.0 && d <= kMaxNoiseDelay; },
-                                  "must be a finite number in [0, 3600] [s]");
-  config.noise.seed = readInteger(params, "noise/seed", config.noise.seed, std::numeric_limits<int>::min(),
-                                  "must be an integer");
+  noise.position_stddev = readStddev("position_stddev", "[m]");
+  noise.orientation_stddev = readStddev("orientation_stddev", "[rad]");
+  noise.linear_velocity_stddev = readStddev("linear_velocity_stddev", "[m/s]");
+  noise.angular_velocity_stddev = readStddev("angular_velocity_stddev", "[rad/s]");
+  noise.delay = readNumber(params, "noise/delay", 0.0, [](double d) { return d >= 0.0 && d <= kMaxNoiseDelay; },
+                           "must be a finite number in [0, 3600] [s]");
+  noise.seed = readInteger(params, "noise/seed", noise.seed, std::numeric_limits<int>::min(), "must be an integer");
+  return noise;
+}
+
+// Names set but not known, top level first, then the bodies'.
+std::vector<std::string> unknownNames(const XmlRpcValue& params, const std::vector<std::string>& unknown_in_bodies) {
+  std::vector<std::string> unknown;
   std::set<std::string> top_level = kSceneNames;
   if (!find(params, "bodies")) top_level.insert(kBodyNames.begin(), kBodyNames.end());
-  collectUnknown(params, "", top_level, config.unknown_parameters);
-  if (const XmlRpcValue* noise = find(params, "noise")) collectUnknown(*noise, "noise/", kNoiseNames, config.unknown_parameters);
-  if (const XmlRpcValue* publish = find(params, "publish")) {
-    collectUnknown(*publish, "publish/", kPublishNames, config.unknown_parameters);
+  collectUnknown(params, "", top_level, unknown);
+  if (const XmlRpcValue* noise = find(params, "noise")) collectUnknown(*noise, "noise/", kNoiseNames, unknown);
+  if (const XmlRpcValue* publish = find(params, "publish")) collectUnknown(*publish, "publish/", kPublishNames, unknown);
+  unknown.insert(unknown.end(), unknown_in_bodies.begin(), unknown_in_bodies.end());
+  return unknown;
+}
+
+}  // namespace
+
+NodeConfig parseConfig(const XmlRpcValue& params) {
+  NodeConfig config;
+  if (params.getType() != XmlRpcValue::TypeStruct && params.getType() != XmlRpcValue::TypeInvalid) {
+    throw ParameterError("the private namespace ~ = " + render(params) +
+                         ": must hold the node's parameters as named keys (a struct), not a single value");
   }
-  config.unknown_parameters.insert(config.unknown_parameters.end(), unknown_in_bodies.begin(),
-                                   unknown_in_bodies.end());
+  requireStruct(params, "publish", "tf, odom, state, applied_wrench, body_services (true or false)");
+  requireStruct(params, "noise", "position_stddev, orientation_stddev, linear_velocity_stddev, angular_velocity_stddev, seed, delay");
+  readTiming(params, config);
+  config.world_frame = readFrame(params, "world_frame", config.world_frame);
+  config.gravity_W = readVector3(params, "gravity", "[m/s^2]");
+  std::vector<std::string> unknown_in_bodies;  // reported after the top-level names
+  config.bodies = parseBodies(params, config, unknown_in_bodies);
+  readLimits(params, config);
+  readOutputs(params, config);
+  config.noise = readNoise(params);
+  config.unknown_parameters = unknownNames(params, unknown_in_bodies);
   return config;
 }
 

@@ -32,6 +32,8 @@ class NodeDiagnostics {
 
  private:
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+  /// Per body: divergence (with several bodies), the step terms, and the drift since reset.
+  void addBodies(diagnostic_updater::DiagnosticStatusWrapper& status) const;
   /// The publish rate over the last kFrequencyWindow reports, within ±10 % of `rate` (as diagnostic_updater's
   /// FrequencyStatus, whose ros::Time subtraction throws after a jump of more than 2^31 s: here in ns).
   void diagnoseFrequency(diagnostic_updater::DiagnosticStatusWrapper& status);
