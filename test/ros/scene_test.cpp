@@ -69,9 +69,15 @@ TEST(Scene, EachBodyMovesOnlyUnderItsOwnWrench) {
   ros::Publisher push = advertiseWrench(nh, "scene/box");
   const nav_msgs::Odometry drifter_before = drifter.messages.back();
   push.publish(wrench("world", 4.0, 0.0, 0.0));  // 2 m/s^2 on the 2 kg box
-  ASSERT_TRUE(waitUntil([&] { return worldVelocity(box.messages.back()).x() > 0.5; }));
-  spinFor(0.2);
-  EXPECT_GT(position(box.messages.back()).x(), 0.05);
+  ASSERT_TRUE(waitUntil([&] { return worldVelocity(box.messages.back()).x() > 0.0; }));
+  const nav_msgs::Odometry a = box.messages.back();
+  nav_msgs::Odometry b;
+  ASSERT_TRUE(box.waitForStampAfter(a.header.stamp + ros::Duration(0.3), b));
+  // 2 m/s² between two grid stamps: v and x of a constant acceleration, which rk4 integrates exactly.
+  const double t = (b.header.stamp - a.header.stamp).toSec(), v_a = worldVelocity(a).x();
+  EXPECT_NEAR(worldVelocity(b).x() - v_a, 2.0 * t, 1e-9);
+  EXPECT_NEAR(position(b).x() - position(a).x(), v_a * t + 0.5 * 2.0 * t * t, 1e-9);
+  EXPECT_NEAR(position(b).y(), position(a).y(), 1e-12);
   // The ball took no wrench and has no velocity: it has not moved at all.
   EXPECT_EQ(position(ball.messages.back()), Eigen::Vector3d(2.0, 0.0, 0.0));
   EXPECT_EQ(worldVelocity(ball.messages.back()), Eigen::Vector3d::Zero());

@@ -212,6 +212,28 @@ TEST(Parameters, MeshBodyFromAFileOrAPackageUri) {
   EXPECT_EQ(rigid_body_ros::resolveMeshUri("/abs/file.stl"), "/abs/file.stl");
 }
 
+TEST(Parameters, PrincipalAxesTurnTheBodyFrameAndXMBSaysHow) {
+  // The same mesh with and without principal_axes: the body frame's origin is the centre of mass either way;
+  // with principal axes its axes are turned by R_MB (X_MB's rotation), so that the mesh-axes tensor is
+  // R_MB I_B R_MBᵀ with I_B diagonal. A transform in the wrong direction (X_BM for X_MB) fails this.
+  XmlRpcValue params;
+  params["shape"] = std::string("mesh");
+  params["mesh"] = std::string(TEST_MESH_DIR "/l_bracket.obj");
+  params["density"] = 2700.0;
+  params["mesh_frame"] = std::string("bracket_mesh");
+  const rigid_body_ros::BodyConfig mesh_axes = parseConfig(params).bodies[0];
+  params["principal_axes"] = true;
+  const rigid_body_ros::BodyConfig principal = parseConfig(params).bodies[0];
+  EXPECT_TRUE(mesh_axes.X_MB.linear().isIdentity(1e-15));
+  EXPECT_LT((principal.X_MB.translation() - mesh_axes.X_MB.translation()).norm(), 1e-15);
+  const Eigen::Matrix3d R_MB = principal.X_MB.linear();
+  const Eigen::Matrix3d& I_B = principal.model.mass.inertia();
+  EXPECT_LT((I_B - Eigen::Matrix3d(I_B.diagonal().asDiagonal())).norm(), 1e-12 * I_B.norm());
+  EXPECT_LT((R_MB * I_B * R_MB.transpose() - mesh_axes.model.mass.inertia()).norm(), 1e-12 * I_B.norm());
+  EXPECT_NEAR(R_MB.determinant(), 1.0, 1e-12);  // a rotation, not a reflection
+  EXPECT_EQ(principal.mesh_frame, "bracket_mesh");
+}
+
 TEST(Parameters, MeshProblemsNameTheParameter) {
   const auto meshParams = [](const std::string& file) {
     XmlRpcValue params;
