@@ -234,11 +234,8 @@ std::map<std::string, LongRunSummary> runLongRun(const Options& options, const S
                     finite ? worst_q : INFINITY, "<= 1e-12", true, finite && worst_q <= 1e-12, true});
     rows.push_back({"long_run", integratorName(type), "max |dL|/|L| (torque-free)", finite ? worst_L : INFINITY,
                     "<= 1e-10", true, finite && worst_L <= 1e-10, true});
-    const bool splitting = type == IntegratorType::kSymplecticSplitting, rk4 = type == IntegratorType::kRk4;
-    const double energy_bound = splitting ? 2e-5 : 2e-4;
-    rows.push_back({"long_run", integratorName(type), "max |dE/E|", finite ? worst_energy : INFINITY,
-                    splitting || rk4 ? "<= " + formatNumber(energy_bound, 3) : "", splitting || rk4,
-                    finite && worst_energy <= energy_bound});
+    // Reported, not claimed (the hand-set bounds once claimed here were not derived).
+    rows.push_back({"long_run", integratorName(type), "max |dE/E|", finite ? worst_energy : INFINITY, "", false, true});
   }
   return summary;
 }

@@ -29,7 +29,6 @@ Model principalBody(const Eigen::Vector3d& moments, double mass = 1.0) {
 }
 
 bool isSplitting(IntegratorType type) { return type == IntegratorType::kSymplecticSplitting; }
-bool isRk4(IntegratorType type) { return type == IntegratorType::kRk4; }
 
 // What a run of N steps saw.
 struct RunSummary {
@@ -89,10 +88,10 @@ void thinRods(Rows& rows, IntegratorType type) {
     const RunSummary run = runSteps(type, principalBody(I), AppliedWrench(), torqueFreeStart(m0), 0.001, 1000);
     const double theta = run.finite ? rotationAngleBetween(run.end.q_WB, reference::TorqueFreeBody(I, m0, kQ0).orientation(1.0))
                                     : INFINITY;
-    const bool claims = isSplitting(type) || isRk4(type);
-    rows.add("thin_rod", type, "orientation error at 1 s [rad]", theta, "<= 1e-4", claims, theta <= 1e-4);
-    rows.add("thin_rod", type, "max |dE/E|", run.finite ? run.worst_energy_change : INFINITY, "<= 1e-6", claims,
-             run.finite && run.worst_energy_change <= 1e-6);
+    // Reported, not claimed: no threshold here is derived from the methods' orders (one set by hand was
+    // withdrawn); the order case holds the claims that can fail.
+    rows.add("thin_rod", type, "orientation error at 1 s [rad]", theta, "", false, true);
+    rows.add("thin_rod", type, "max |dE/E|", run.finite ? run.worst_energy_change : INFINITY, "", false, true);
   }
   {
     const Eigen::Vector3d I(1e-4, 1.0, 1.0 + 1e-4), m0 = I.cwiseProduct(Eigen::Vector3d(100.0, 1.0, 0.0));
@@ -118,11 +117,8 @@ void highSpin(Rows& rows, IntegratorType type, bool quick) {
     const RunSummary run = runSteps(type, model, AppliedWrench(), torqueFreeStart(m0), h, 100);
     const double theta = run.finite ? rotationAngleBetween(run.end.q_WB, reference::TorqueFreeBody(I, m0, kQ0).orientation(run.end.t))
                                     : INFINITY;
-    // Claimed by the fourth- and fifth-order methods and the splitting; buss and implicit_midpoint, second
-    // order with a larger constant, accumulate ~(|ω|h)³/12 a step (8e-3 after 100 steps) and only report.
-    const bool claims = nominalOrder(type) >= 4 || isSplitting(type);
-    rows.add("high_spin", type, "orientation error after 100 steps at |w|h = 0.1 [rad]", theta, "<= 1e-3", claims,
-             theta <= 1e-3);
+    // Reported, not claimed: the 1e-3 rad once claimed here was set by hand, 45× to 45 000× above the values.
+    rows.add("high_spin", type, "orientation error after 100 steps at |w|h = 0.1 [rad]", theta, "", false, true);
   }
   // Bisection in log(|ω|h) on [0.01, 100] for stability over a fixed number of steps.
   const long steps = quick ? 200 : 1000;
@@ -177,7 +173,7 @@ void dzhanibekov(Rows& rows, IntegratorType type) {
   const double interval = changes.size() >= 2 ? (changes.back() - changes.front()) / (changes.size() - 1) : NAN;
   const double relative = std::abs(interval / exact.flipTime() - 1.0);
   rows.add("dzhanibekov_130s", type, "flip time relative error (t_flip = " + format(exact.flipTime()) + " s)",
-           std::isfinite(relative) ? relative : INFINITY, "<= 0.01", isSplitting(type), relative <= 0.01);
+           std::isfinite(relative) ? relative : INFINITY, "", false, true);
 }
 
 // ω ∈ {0, 1e-300, 1e-12, 1e-8} about a principal axis: one step of 10 ms turns by |ω|h exactly.
@@ -198,7 +194,7 @@ void nearZero(Rows& rows, IntegratorType type) {
   }
   rows.invariant("near_zero_omega", type, "finite for w in {0, 1e-300, 1e-12, 1e-8} (1 = yes)", finite ? 1 : 0, "= 1", finite);
   rows.add("near_zero_omega", type, "max relative error of the rotation angle |w|h", finite ? worst : INFINITY,
-           "<= 1e-15", true, finite && worst <= 1e-15);
+           "<= 1e-15", true, finite && worst <= 1e-15);  // a few ulps of 1: the rotation is exact but for rounding
 }
 
 // Scaling mass, inertia, forces, damping and momenta by s leaves the motion unchanged.
@@ -224,6 +220,8 @@ void scaleInvariance(Rows& rows, IntegratorType type) {
     worst = std::max(worst, rotationAngleBetween(scaled.q_WB, unit.q_WB));
   }
   // dopri5's abs_tolerance is an absolute error by definition: its steps depend on the scale.
+  // Scaling is exact in real arithmetic; in doubles each of the 1e4 steps may round differently, ~1e-16 a
+  // step relative: 1e4 · 1e-16 = 1e-12.
   rows.add("scale_1e-9_1e9", type, "max relative difference of x and q to s = 1 over 1e4 steps", worst, "<= 1e-12",
            type != IntegratorType::kDopri5, worst <= 1e-12);
 }
@@ -331,12 +329,12 @@ std::vector<StabilityRow> runStabilitySuite(bool quick) {
 std::vector<std::pair<std::string, std::string>> stabilityCaseDescriptions(bool quick) {
   return {
       {"order", "every fixed-step method claims its nominal order p as log2(e(h)/e(h/2)) >= p - 1/2 (halfway to the next lower order) on the torque-free asymmetric body (2 s) and the T handle before its flip (5 s); dopri5 claims that its error follows its tolerance, e ~ tol^a with a >= 1/2"},
-      {"thin_rod", "I = (0.01, 1, 1.01), w_B = (100, 1, 0) rad/s, h = 1 ms, 1 s; claimed by symplectic_splitting and rk4"},
+      {"thin_rod", "I = (0.01, 1, 1.01), w_B = (100, 1, 0) rad/s, h = 1 ms, 1 s; reported"},
       {"thin_rod_1e-4", "I = (1e-4, 1, 1 + 1e-4), same spin, h = 1 ms, 1 s; every method"},
       {"high_spin", std::string("I = (1, 2, 3), m0 = (1, 0.5, 2) at |w|h in {0.01, 0.1, 0.3, 1, pi}, 1000 steps; ") +
-                        "orientation error at |w|h = 0.1 claimed by rk4, rkmk4, dopri5 and symplectic_splitting; largest stable |w|h by bisection over " +
+                        "orientation error at |w|h = 0.1 reported; largest stable |w|h by bisection over " +
                         (quick ? "200" : "1000") + " steps"},
-      {"dzhanibekov_130s", "I = (3, 5, 9), m0 = (0.01, 2, 0.01), h = 0.1 s, 130 s; flip count claimed by order >= 2, flip time by symplectic_splitting"},
+      {"dzhanibekov_130s", "I = (3, 5, 9), m0 = (0.01, 2, 0.01), h = 0.1 s, 130 s; flip count claimed by order >= 2 (an exact count), flip time reported"},
       {"near_zero_omega", "w in {0, 1e-300, 1e-12, 1e-8} rad/s about a principal axis, one step of 10 ms; every method"},
       {"scale_1e-9_1e9", "mass, inertia, forces, damping and momenta times s in {1e-9, 1e9}, 1e4 steps of 1 ms, against s = 1; every method but dopri5 (absolute tolerance)"},
       {"large_step_1s", "I = (1, 2, 3), m0 = (1, 0.5, 2), h = 1 s, 100 steps; every method"},

@@ -121,6 +121,25 @@ TEST_F(AccuracyReport, Rk4BeatsExplicitEulerByOrdersOfMagnitudeAtEqualStep) {
   EXPECT_EQ(compared, 8);
 }
 
+TEST_F(AccuracyReport, BallisticErrorsAreTheClosedFormsDiscreteSignatures) {
+  // Absolute accuracy on a closed form (docs/references.md §2.4), for every h of the sweep: the 2 kg box thrown
+  // under g = 9.81 m/s² for T = 5 s. Explicit and semi-implicit Euler miss x(T) by exactly g h T/2 (their
+  // discrete solutions x_n = x(t_n) ∓ F h t_n/(2m)); every method of order >= 2 is exact but for rounding.
+  int checked = 0;
+  for (const auto& row : readCsv(file("work_precision.csv"))) {
+    if (row.at("scene") != "ballistic") continue;
+    const std::string& method = row.at("integrator");
+    const double h = std::stod(row.at("h")), error = std::stod(row.at("error"));
+    if (method == "explicit_euler" || method == "semi_implicit_euler") {
+      EXPECT_NEAR(error, 9.81 * h * 5.0 / 2.0, 1e-9 * (1.0 + 9.81 * h * 5.0)) << method << " h = " << h;
+    } else {
+      EXPECT_LT(error, 1e-9) << method << " h = " << h;
+    }
+    ++checked;
+  }
+  EXPECT_GE(checked, 28);  // 4 steps (quick) × 7 fixed-step methods, and dopri5's tolerances
+}
+
 // The verdict of `value` against a threshold written "<= X", ">= X" or "= X", recomputed here rather than read from
 // the report's own pass column.
 bool meets(double value, const std::string& threshold) {

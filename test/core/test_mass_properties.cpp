@@ -101,3 +101,16 @@ TEST(MassProperties, PublishedNonPhysicalTestBodiesNeedTheExplicitExemption) {
                                            rigid_body::InertiaCheck::kPositiveDefiniteOnly),
                InvalidMassProperties);
 }
+
+TEST(MassProperties, ExtremeButValidBodiesKeepAFiniteInverseAndImpossibleOnesAreRefused) {
+  // Principal moments ~1e-150 kg m²: det I ~ 1e-450 underflows to 0, so an inverse through the determinant
+  // would be NaN; through the eigen-decomposition it is exact.
+  const MassProperties tiny = MassProperties::box(1e-140, Eigen::Vector3d(1e-5, 2e-5, 3e-5));
+  EXPECT_TRUE(tiny.inverseInertia().allFinite());
+  EXPECT_TRUE((tiny.inertia() * tiny.inverseInertia()).isApprox(Eigen::Matrix3d::Identity(), 1e-12));
+  // Overflow, underflow and subnormal masses give no usable body: refused with the reason.
+  EXPECT_THROW(MassProperties::box(1e300, Eigen::Vector3d(1e10, 1.0, 1.0)), InvalidMassProperties);  // I = inf
+  EXPECT_THROW(MassProperties::sphere(1.0, 1e200), InvalidMassProperties);                           // r² = inf
+  EXPECT_THROW(MassProperties::box(1e-300, Eigen::Vector3d(1e-100, 1e-100, 1e-100)), InvalidMassProperties);
+  EXPECT_THROW(MassProperties::box(1e-320, Eigen::Vector3d::Ones()), InvalidMassProperties);  // subnormal mass
+}

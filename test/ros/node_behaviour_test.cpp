@@ -299,6 +299,35 @@ TEST_F(NodeBehaviour, AWrenchInAFrameBelowTheBodyTurnsWithTheBody) {
   publisher.publish(wrench("world", 0.0, 0.0, 0.0));
 }
 
+TEST_F(NodeBehaviour, Dopri5UnderAWrenchChangingWithEveryMessageStaysExactWhereThePhysicsIs) {
+  // A world force of 1 N along x on 2 kg, with a torque that flips sign with every message: each message
+  // changes the input and restarts dopri5 from the current state. The translation is a constant acceleration
+  // whatever the torque does, which dopri5 integrates exactly: Δv = F/M Δt between two stamps.
+  Recorder<nav_msgs::Odometry> odom(nh_, "adaptive/odom");
+  ros::Publisher publisher = advertiseWrench("adaptive");
+  ros::Rate rate(200.0);
+  nav_msgs::Odometry a;
+  bool have_a = false;
+  for (int i = 0; i < 200 && ros::ok(); ++i) {  // 1 s
+    geometry_msgs::WrenchStamped message = wrench("world", 1.0, 0.0, 0.0);
+    message.wrench.torque.z = i % 2 ? 0.01 : -0.01;
+    publisher.publish(message);
+    ros::spinOnce();
+    if (!have_a && !odom.messages.empty() && worldVelocity(odom.messages.back()).x() > 0.0) {
+      a = odom.messages.back();
+      have_a = true;
+    }
+    rate.sleep();
+  }
+  ASSERT_TRUE(have_a);
+  const nav_msgs::Odometry b = odom.messages.back();
+  const double dt = (b.header.stamp - a.header.stamp).toSec();
+  ASSERT_GT(dt, 0.5);
+  EXPECT_NEAR(worldVelocity(b).x() - worldVelocity(a).x(), 0.5 * dt, 1e-9);
+  for (const auto& message : odom.messages) ASSERT_TRUE(allFinite(message));
+  publisher.publish(wrench("world", 0.0, 0.0, 0.0));
+}
+
 TEST_F(NodeBehaviour, WrenchDropsToZeroAfterTheTimeout) {
   Recorder<nav_msgs::Odometry> odom(nh_, "timed/odom");
   ros::Publisher publisher = advertiseWrench("timed");
