@@ -7,6 +7,7 @@ from an offset, so that the scene files of several nodes have disjoint body name
 
   python3 scripts/make_scene.py --bodies 64 --with-input 32 > config/swarm.yaml
   python3 scripts/make_scene.py --bodies 500 --first 500 > /tmp/swarm_b.yaml   # the second half of 1000
+  python3 scripts/make_scene.py --bodies 10000 --scene-wide > /tmp/big.yaml      # bodies/odom, bodies/wrench
 """
 import argparse
 import math
@@ -23,12 +24,16 @@ def main():
     parser.add_argument("--rate", type=float, default=100.0, help="publish rate [Hz]")
     parser.add_argument("--dt", type=float, default=0.001, help="physics step [s]")
     parser.add_argument("--publish", default="tf,odom", help="outputs to enable, of tf,odom,state,applied_wrench")
+    parser.add_argument("--scene-wide", action="store_true",
+                        help="no per-body topics: bodies/odom and bodies/wrench for the whole scene")
     args = parser.parse_args()
     with_input = args.bodies // 2 if args.with_input is None else args.with_input
     enabled = set(args.publish.split(",")) if args.publish else set()
     side = max(1, math.ceil(math.sqrt(args.first + args.bodies)))
     width = max(2, len(str(args.first + args.bodies - 1)))
     publish = ", ".join(f"{o}: {'true' if o in enabled else 'false'}" for o in ("tf", "odom", "state", "applied_wrench"))
+    if args.scene_wide:
+        publish += ", per_body_topics: false"
     print(f"# A swarm of {args.bodies} bodies (written by scripts/make_scene.py; see docs/scenes.md).")
     print(f"# The first {with_input} take wrench commands (swarm_NN/wrench); the rest drift with no input.")
     print(f"rate: {args.rate}\ndt: {args.dt}\nintegrator: {args.integrator}\nworld_frame: world")

@@ -34,7 +34,8 @@ ControlServices::ControlServices(ros::NodeHandle& nh, const NodeConfig& config, 
   using rigid_body_sim::ApplyWrench;
   using rigid_body_sim::GetState;
   using rigid_body_sim::SetState;
-  for (std::size_t body = 0; body < config.bodies.size() && config.publish.body_services; ++body) {
+  const bool body_services = config.publish.body_services && config.publish.per_body_topics;
+  for (std::size_t body = 0; body < config.bodies.size() && body_services; ++body) {
     const BodyConfig& body_config = config.bodies[body];
     services_.push_back(nh.advertiseService<GetState::Request, GetState::Response>(
         body_config.topic("get_state"), [this, body](auto& req, auto& res) { return onGetState(body, req, res); }));

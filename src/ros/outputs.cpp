@@ -37,16 +37,32 @@ Outputs::Outputs(ros::NodeHandle& nh, const NodeConfig& config) : config_(config
   // In lockstep at full speed the outputs come in bursts: a deeper queue lets subscribers keep up longer
   // (a subscriber slower than the simulation still misses messages; set real_time_factor then).
   const uint32_t queue = config.lockstep ? 100 : 10;
-  for (std::size_t body = 0; body < channels_.size(); ++body) advertise(nh, body, queue);
+  for (std::size_t body = 0; body < channels_.size(); ++body) {
+    Channel& channel = channels_[body];
+    // Ground truth: the covariances stay zero.
+    channel.odom_message.header.frame_id = config.world_frame;
+    channel.odom_message.child_frame_id = config.bodies[body].body_frame;
+    if (config.publish.per_body_topics) advertise(nh, body, queue);
+    if (config.publish.tf) {
+      geometry_msgs::TransformStamped transform;
+      transform.header.frame_id = config.world_frame;
+      transform.child_frame_id = config.bodies[body].body_frame;
+      transforms_.push_back(transform);
+    }
+  }
+  if (!config.publish.per_body_topics && config.publish.odom) {
+    // One topic for the whole scene, filled only while someone listens.
+    array_message_.header.frame_id = config.world_frame;
+    array_publisher_ = nh.advertise<rigid_body_sim::OdometryArray>(
+        "bodies/odom", queue, [this](const ros::SingleSubscriberPublisher&) { ++array_subscribers_; },
+        [this](const ros::SingleSubscriberPublisher&) { --array_subscribers_; });
+  }
   if (config.lockstep) clock_publisher_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
 }
 
 void Outputs::advertise(ros::NodeHandle& nh, std::size_t body, uint32_t queue) {
   Channel& channel = channels_[body];
   const BodyConfig& config = config_.bodies[body];
-  // Ground truth: the covariances stay zero.
-  channel.odom_message.header.frame_id = config_.world_frame;
-  channel.odom_message.child_frame_id = config.body_frame;
   channel.state_message.header.frame_id = config_.world_frame;
   channel.state_message.child_frame_id = config.body_frame;
   channel.applied_wrench_message.header.frame_id = config_.world_frame;
@@ -71,12 +87,6 @@ void Outputs::advertise(ros::NodeHandle& nh, std::size_t body, uint32_t queue) {
   if (config_.noise.enabled()) {
     channel.noise = std::make_unique<OdometryNoise>(nh, config.topic("odom_noisy"), queue, config_.noise,
                                                     config_.rate, body);  // one stream per body
-  }
-  if (config_.publish.tf) {
-    geometry_msgs::TransformStamped transform;
-    transform.header.frame_id = config_.world_frame;
-    transform.child_frame_id = config.body_frame;
-    transforms_.push_back(transform);
   }
 }
 
@@ -110,6 +120,26 @@ void Outputs::publish(const rigid_body::World& world) {
   }
   for (std::size_t body = 0; body < channels_.size(); ++body) publishBody(world, body, stamp);
   if (config_.publish.tf) tf_broadcaster_.sendTransform(transforms_);  // every body in one tf message
+  if (array_subscribers_ > 0) publishArray(world, stamp);
+}
+
+void Outputs::publishArray(const rigid_body::World& world, const ros::Time& stamp) {
+  const rigid_body::Scene& scene = world.scene();
+  array_message_.header.stamp = stamp;
+  array_message_.bodies.resize(channels_.size());
+  for (std::size_t body = 0; body < channels_.size(); ++body) {
+    nav_msgs::Odometry& odom = channels_[body].odom_message;
+    odom.header.stamp = stamp;
+    fillOdometry(scene.model(body).mass, scene.state(body), odom);
+    if (!finite(odom)) {
+      ++withheld_;
+      ROS_WARN_THROTTLE(kWarningPeriod, "rigid_body_node: bodies/odom withheld: a non-finite velocity of %s",
+                        config_.bodies[body].body_frame.c_str());
+      return;
+    }
+    array_message_.bodies[body] = odom;
+  }
+  array_publisher_.publish(array_message_);
 }
 
 void Outputs::publishBody(const rigid_body::World& world, std::size_t body, const ros::Time& stamp) {

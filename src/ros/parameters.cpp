@@ -51,7 +51,8 @@ const std::set<std::string> kSceneNames = {
     "max_body_steps_per_tick", "max_body_steps_per_request", "publish_tf",
     "publish", "abs_tolerance", "rel_tolerance", "max_force", "max_torque", "max_energy_growth", "lockstep",
     "real_time_factor", "start_paused", "noise"};
-const std::set<std::string> kPublishNames = {"tf", "odom", "state", "applied_wrench", "body_services"};
+const std::set<std::string> kPublishNames = {"tf", "odom", "state", "applied_wrench", "body_services",
+                                             "per_body_topics"};
 const std::set<std::string> kNoiseNames = {"position_stddev", "orientation_stddev", "linear_velocity_stddev",
                                            "angular_velocity_stddev", "seed", "delay"};
 const std::set<std::string> kInitialNames = {"position", "orientation", "linear_velocity", "angular_velocity"};
@@ -332,6 +333,7 @@ void readOutputs(const XmlRpcValue& params, NodeConfig& config) {
   config.publish.state = readBool(params, "publish/state", true);
   config.publish.applied_wrench = readBool(params, "publish/applied_wrench", true);
   config.publish.body_services = readBool(params, "publish/body_services", true);
+  config.publish.per_body_topics = readBool(params, "publish/per_body_topics", true);
   config.lockstep = readBool(params, "lockstep", false);
   config.real_time_factor = readNumber(params, "real_time_factor", 1.0, [](double f) { return f >= 0.0; },
                                        "must be a finite number >= 0 (0: as fast as possible)");
@@ -375,7 +377,7 @@ NodeConfig parseConfig(const XmlRpcValue& params) {
     throw ParameterError("the private namespace ~ = " + render(params) +
                          ": must hold the node's parameters as named keys (a struct), not a single value");
   }
-  requireStruct(params, "publish", "tf, odom, state, applied_wrench, body_services (true or false)");
+  requireStruct(params, "publish", "tf, odom, state, applied_wrench, body_services, per_body_topics (true or false)");
   requireStruct(params, "noise", "position_stddev, orientation_stddev, linear_velocity_stddev, angular_velocity_stddev, seed, delay");
   readTiming(params, config);
   config.world_frame = readFrame(params, "world_frame", config.world_frame);
@@ -420,7 +422,8 @@ std::string NodeConfig::describe() const {
       << " N m, max_energy_growth " << max_energy_growth << ", publish tf " << (publish.tf ? "true" : "false")
       << " odom " << (publish.odom ? "true" : "false") << " state " << (publish.state ? "true" : "false")
       << " applied_wrench " << (publish.applied_wrench ? "true" : "false") << " body_services "
-      << (publish.body_services ? "true" : "false");
+      << (publish.body_services ? "true" : "false") << " per_body_topics "
+      << (publish.per_body_topics ? "true" : "false");
   for (const BodyConfig& body : bodies) {
     const Eigen::Vector3d& I = body.model.mass.principalMoments();
     out << "\n  body '" << (body.name.empty() ? "(flat)" : body.name) << "': frame " << body.body_frame << ", mass "

@@ -27,6 +27,13 @@ std::string withoutLeadingSlash(const std::string& frame) {
 WrenchInput::WrenchInput(ros::NodeHandle& nh, const NodeConfig& config, rigid_body::World& world,
                          std::function<rigid_body::Nanoseconds()> now)
     : config_(config), world_(world), now_(std::move(now)), tf_listener_(tf_buffer_) {
+  if (!config.publish.per_body_topics) {
+    // One subscriber for the whole scene; the bodies found by name.
+    for (std::size_t body = 0; body < config.bodies.size(); ++body) body_by_name_[config.bodies[body].name] = body;
+    subscribers_.push_back(nh.subscribe<rigid_body_sim::BodyWrenches>(
+        "bodies/wrench", kQueueSize, [this](const rigid_body_sim::BodyWrenches::ConstPtr& m) { onBodyWrenches(*m); }));
+    return;
+  }
   for (std::size_t body = 0; body < config.bodies.size(); ++body) {
     const BodyConfig& body_config = config.bodies[body];
     if (!body_config.wrench_input) continue;  // no input term: no subscriber
@@ -175,6 +182,19 @@ void WrenchInput::onWrench(std::size_t body, const geometry_msgs::WrenchStamped&
   ConvertedWrench converted;
   if (!convert(body, message.wrench, message.header.frame_id, message.header.stamp, nullptr, converted)) return;
   submit(body, converted);
+}
+
+void WrenchInput::onBodyWrenches(const rigid_body_sim::BodyWrenches& message) {
+  for (const rigid_body_sim::BodyWrench& item : message.wrenches) {
+    const auto found = body_by_name_.find(item.body);
+    if (found == body_by_name_.end() || !config_.bodies[found->second].wrench_input) {
+      ++rejections_.unknown_body;
+      ROS_WARN_THROTTLE(kWarningPeriod, "rigid_body_node: bodies/wrench: no body '%s' that takes wrenches (%lu so far)",
+                        item.body.c_str(), static_cast<unsigned long>(rejections_.unknown_body));
+      continue;
+    }
+    onWrench(found->second, item.wrench);
+  }
 }
 
 void WrenchInput::onWrenchUnstamped(std::size_t body, const geometry_msgs::Wrench& message) {

@@ -8,6 +8,8 @@
 #include <set>
 #include <string>
 
+#include "rigid_body_sim/BodyWrenches.h"
+#include "rigid_body_sim/OdometryArray.h"
 #include "test_helpers.hpp"
 
 namespace {
@@ -49,8 +51,12 @@ TEST(Scene, EachBodyHasItsTopicsAndOnlyTheEnabledOnes) {
 TEST(Scene, AllBodiesGoOutInOneTfMessagePerTick) {
   ros::NodeHandle nh;
   Recorder<tf2_msgs::TFMessage> tf(nh, "/tf");
-  ASSERT_TRUE(tf.waitForCount(5));
+  ASSERT_TRUE(tf.waitForCount(10));
+  int from_scene = 0;
   for (const tf2_msgs::TFMessage& message : tf.messages) {
+    // Two nodes of this launch file publish /tf: the other one's messages are its own three bodies.
+    if (message.transforms.empty() || message.transforms[0].child_frame_id == "first") continue;
+    ++from_scene;
     ASSERT_EQ(message.transforms.size(), 3u);
     EXPECT_EQ(message.transforms[0].child_frame_id, "box");
     EXPECT_EQ(message.transforms[1].child_frame_id, "ball_link");
@@ -60,6 +66,7 @@ TEST(Scene, AllBodiesGoOutInOneTfMessagePerTick) {
       EXPECT_EQ(transform.header.stamp, message.transforms[0].header.stamp);
     }
   }
+  EXPECT_GE(from_scene, 3);
 }
 
 TEST(Scene, EachBodyMovesOnlyUnderItsOwnWrench) {
@@ -94,7 +101,7 @@ TEST(Scene, DiagnosticsShowTheTermsEachBodysStepWasAssembledFrom) {
   ros::NodeHandle nh;
   Diagnostics diagnostics(nh);
   std::string box, ball, drifter;
-  ASSERT_TRUE(diagnostics.waitFor("rigid body scene (3 bodies)", [&](const diagnostic_msgs::DiagnosticStatus& status) {
+  ASSERT_TRUE(diagnostics.waitFor("scene/node: rigid body scene (3 bodies)", [&](const diagnostic_msgs::DiagnosticStatus& status) {
     box = Diagnostics::value(status, "box: step terms");
     ball = Diagnostics::value(status, "ball_link: step terms");
     drifter = Diagnostics::value(status, "drifter: step terms");
@@ -104,6 +111,54 @@ TEST(Scene, DiagnosticsShowTheTermsEachBodysStepWasAssembledFrom) {
   EXPECT_EQ(drifter, "translation");
   EXPECT_EQ(box, "translation, rotation (w = R I^-1 R^T L), wrench input");
   EXPECT_EQ(ball, "translation, rotation (isotropic: w = L/I0), wrench input");
+}
+
+TEST(Scene, WithoutPerBodyTopicsOneArrayCarriesEveryBodyAndNamedWrenchesMoveTheirBodyOnly) {
+  ros::NodeHandle nh;
+  Recorder<rigid_body_sim::OdometryArray> all(nh, "many/bodies/odom");
+  ASSERT_TRUE(all.waitForCount(2));
+  // No per-body topic or service was set up: a few registrations for the whole scene.
+  const std::set<std::string> published = topicsWith(0), subscribed = topicsWith(1);
+  for (const char* name : {"first", "second", "third"}) {
+    EXPECT_FALSE(published.count(std::string("/many/") + name + "/odom")) << name;
+    EXPECT_FALSE(subscribed.count(std::string("/many/") + name + "/wrench")) << name;
+  }
+  EXPECT_TRUE(subscribed.count("/many/bodies/wrench"));
+  const rigid_body_sim::OdometryArray first = all.messages.back();
+  ASSERT_EQ(first.bodies.size(), 3u);
+  EXPECT_EQ(first.header.frame_id, "world");
+  EXPECT_EQ(first.bodies[0].child_frame_id, "first");
+  EXPECT_EQ(first.bodies[1].child_frame_id, "second");
+  for (const auto& odom : first.bodies) EXPECT_EQ(odom.header.stamp, first.header.stamp);
+  EXPECT_EQ(first.bodies[1].pose.pose.position.x, 2.0);
+
+  // A named wrench moves its body, exactly as on the body's own topic; an unknown name moves nothing.
+  ros::Publisher publisher = nh.advertise<rigid_body_sim::BodyWrenches>("many/bodies/wrench", 10);
+  ASSERT_TRUE(waitUntil([&] { return publisher.getNumSubscribers() > 0; }));
+  rigid_body_sim::BodyWrenches wrenches;
+  rigid_body_sim::BodyWrench push;
+  push.body = "second";
+  push.wrench.header.frame_id = "world";
+  push.wrench.wrench.force.y = 1.0;
+  wrenches.wrenches.push_back(push);
+  push.body = "nobody";
+  wrenches.wrenches.push_back(push);
+  push.body = "third";  // takes no wrench
+  wrenches.wrenches.push_back(push);
+  publisher.publish(wrenches);
+  ASSERT_TRUE(waitUntil([&] { return worldVelocity(all.messages.back().bodies[1]).y() > 0.0; }));
+  const rigid_body_sim::OdometryArray a = all.messages.back();
+  rigid_body_sim::OdometryArray b;
+  ASSERT_TRUE(all.waitForStampAfter(a.header.stamp + ros::Duration(0.3), b));
+  const double t = (b.header.stamp - a.header.stamp).toSec();
+  // A sphere of 1 kg (the default mass) under 1 N: Δv = t exactly (rk4, constant force).
+  EXPECT_NEAR(worldVelocity(b.bodies[1]).y() - worldVelocity(a.bodies[1]).y(), 1.0 * t, 1e-9);
+  EXPECT_EQ(worldVelocity(b.bodies[0]), Eigen::Vector3d::Zero());
+  EXPECT_EQ(worldVelocity(b.bodies[2]), Eigen::Vector3d::Zero());
+  Diagnostics diagnostics(nh);
+  EXPECT_TRUE(diagnostics.waitFor("many/node: rigid body scene", [](const diagnostic_msgs::DiagnosticStatus& s) {
+    return Diagnostics::value(s, "rejected unknown_body") == "2";
+  }));
 }
 
 int main(int argc, char** argv) {

@@ -53,7 +53,9 @@ TEST_F(SimTime, StampsFollowTheDrivenClockAndTimeJumpsAreHandled) {
     EXPECT_NEAR(std::remainder(stamp - 100.0, 0.01), 0.0, 1e-6) << stamp;
     EXPECT_LE(stamp, 102.0 + 1e-9);
     EXPECT_GE(stamp, 100.0);
-    if (i > 0) ASSERT_GT(odom.messages[i].header.stamp, odom.messages[i - 1].header.stamp) << i;
+    if (i > 0) {
+      ASSERT_GT(odom.messages[i].header.stamp, odom.messages[i - 1].header.stamp) << i;
+    }
   }
 
   // F/M·Δt in sim time: 1 N on 2 kg.
@@ -86,7 +88,9 @@ TEST_F(SimTime, StampsFollowTheDrivenClockAndTimeJumpsAreHandled) {
     const double stamp = odom.messages[i].header.stamp.toSec();
     EXPECT_GE(stamp, 50.0);
     EXPECT_LE(stamp, 51.0 + 1e-9);
-    if (i > first_after) ASSERT_GT(odom.messages[i].header.stamp, odom.messages[i - 1].header.stamp) << i;
+    if (i > first_after) {
+      ASSERT_GT(odom.messages[i].header.stamp, odom.messages[i - 1].header.stamp) << i;
+    }
   }
   // Continuous: after a second at constant velocity the body is about v·1 s further, not back at the start.
   const double v = worldVelocity(odom.messages.back()).x();

@@ -16,6 +16,7 @@
 #include <memory>
 #include <vector>
 
+#include "rigid_body_sim/OdometryArray.h"
 #include "rigid_body_sim/RigidBodyState.h"
 #include "rigid_body_sim/ros/odometry_noise.hpp"
 #include "rigid_body_sim/ros/parameters.hpp"
@@ -55,6 +56,8 @@ class Outputs {
   };
 
   void advertise(ros::NodeHandle& nh, std::size_t body, uint32_t queue);
+  /// bodies/odom: every body's odometry in one message (publish/per_body_topics: false).
+  void publishArray(const rigid_body::World& world, const ros::Time& stamp);
   void publishBody(const rigid_body::World& world, std::size_t body, const ros::Time& stamp);
 
   const NodeConfig& config_;
@@ -63,6 +66,9 @@ class Outputs {
   std::unique_ptr<tf2_ros::StaticTransformBroadcaster> mesh_frame_broadcaster_;
   std::vector<geometry_msgs::TransformStamped> transforms_;  ///< one per body when tf is published
   ros::Publisher clock_publisher_;                             ///< lockstep only
+  ros::Publisher array_publisher_;                             ///< bodies/odom, without per-body topics
+  int array_subscribers_ = 0;
+  rigid_body_sim::OdometryArray array_message_;
   std::uint64_t withheld_ = 0;
   std::uint64_t resets_seen_ = 0;  ///< the World's reset count when max_norm_error was last cleared
 };

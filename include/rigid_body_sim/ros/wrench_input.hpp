@@ -15,9 +15,11 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <unordered_map>
 #include <string>
 #include <vector>
 
+#include "rigid_body_sim/BodyWrenches.h"
 #include "rigid_body_sim/ros/parameters.hpp"
 #include "rigid_body_sim/world.hpp"
 
@@ -30,7 +32,10 @@ struct WrenchRejections {
   std::uint64_t torque_limit = 0;    ///< |τ| above max_torque
   std::uint64_t unknown_frame = 0;   ///< a frame tf2 could not resolve
   std::uint64_t refused_by_core = 0; ///< the World refused the command (queue full, body without input)
-  std::uint64_t total() const { return non_finite + force_limit + torque_limit + unknown_frame + refused_by_core; }
+  std::uint64_t unknown_body = 0;    ///< bodies/wrench items naming no body that takes wrenches
+  std::uint64_t total() const {
+    return non_finite + force_limit + torque_limit + unknown_frame + refused_by_core + unknown_body;
+  }
 };
 
 /// A message wrench in the core's terms: body- or world-fixed parts, and for a world-held wrench the point
@@ -60,6 +65,8 @@ class WrenchInput {
  private:
   void onWrench(std::size_t body, const geometry_msgs::WrenchStamped& message);
   void onWrenchUnstamped(std::size_t body, const geometry_msgs::Wrench& message);
+  /// bodies/wrench (publish/per_body_topics: false): each item as if on its body's own wrench topic.
+  void onBodyWrenches(const rigid_body_sim::BodyWrenches& message);
   void submit(std::size_t body, const ConvertedWrench& converted);
   void warnUnknownFrame(const std::string& frame, const std::string& error);
   /// True if `frame` has body_frame among its ancestors in the tf tree (it is attached to the body).
@@ -73,6 +80,7 @@ class WrenchInput {
   tf2_ros::TransformListener tf_listener_;
   std::vector<ros::Subscriber> subscribers_;
   std::map<std::string, ros::WallTime> last_frame_warning_;  ///< per unknown frame (bounded)
+  std::unordered_map<std::string, std::size_t> body_by_name_;  ///< for bodies/wrench
 };
 
 }  // namespace rigid_body_ros
