@@ -223,7 +223,9 @@ void World::expireAt(std::int64_t k, UpdateResult& result) {
   }
   scheduled_.erase(std::remove_if(scheduled_.begin(), scheduled_.end(),
                                   [this](std::size_t body) {
-                                    return inputs_[body].timed.empty() && inputs_[body].topic_expiry == kForever;
+                                    InputTimeline& timeline = inputs_[body];
+                                    timeline.scheduled = !timeline.timed.empty() || timeline.topic_expiry != kForever;
+                                    return !timeline.scheduled;
                                   }),
                    scheduled_.end());
 }
@@ -256,7 +258,9 @@ CommandReply World::submit(const Command& command) {
 void World::apply(const Command& command, UpdateResult* result) {
   InputTimeline& timeline = inputs_[command.body];
   const auto schedule = [this](std::size_t body) {
-    if (std::find(scheduled_.begin(), scheduled_.end(), body) == scheduled_.end()) scheduled_.push_back(body);
+    if (inputs_[body].scheduled) return;
+    inputs_[body].scheduled = true;
+    scheduled_.push_back(body);
   };
   switch (command.kind) {
     case CommandKind::kTopicWrench: {
@@ -333,6 +337,7 @@ void World::clearWrenchesNow() {
     timeline.topic = AppliedWrench();
     timeline.topic_expiry = kForever;
     timeline.timed.clear();
+    timeline.scheduled = false;
     scene_.setInput(body, AppliedWrench());
   }
   scheduled_.clear();

@@ -162,6 +162,7 @@ class World {
     AppliedWrench topic;
     std::int64_t topic_expiry;  // step at which the topic wrench drops to zero; kForever: never
     bool timed_out = false;
+    bool scheduled = false;  // listed in scheduled_ (a flag, so that listing a body costs O(1))
     std::vector<TimedWrench> timed;
   };
   enum class CommandKind { kTopicWrench, kTimedWrench, kClearWrenches, kReset, kSetState, kPause, kUnpause };

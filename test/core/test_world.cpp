@@ -332,3 +332,29 @@ TEST(World, ResetForgetsDopri5sMemory) {
   EXPECT_EQ(a.p_WB, b.p_WB);
   EXPECT_EQ(a.L_W, b.L_W);
 }
+
+TEST(World, TimeoutsOfSeveralBodiesEachExpireAtTheirOwnStep) {
+  // Three bodies, wrenches arriving at different times, one timeout: each body's wrench acts from its own
+  // arrival to its own arrival + timeout, also when the expiries fall inside one late update.
+  WorldSettings settings = settingsWith();
+  settings.wrench_timeout = 0.1;
+  const Model model{MassProperties::sphere(1.0, 0.1), ForceModel{}};
+  World world(std::vector<BodyDefinition>(3, BodyDefinition{model, State(), true}), IntegratorType::kRk4,
+              IntegratorSettings(), settings);
+  world.start(0);
+  world.setWrench(0, worldForce(1.0), seconds(0.0));
+  world.update(seconds(0.02));
+  world.setWrench(1, worldForce(1.0), seconds(0.02));
+  world.setWrench(2, worldForce(1.0), seconds(0.05));  // arrives between updates: waits for its step
+  world.setWrench(0, worldForce(1.0), seconds(0.05));  // renews body 0's wrench (and its timeout)
+  const UpdateResult late = world.update(seconds(1.0));
+  EXPECT_EQ(late.timed_out.size(), 3u);
+  const auto v = [&](std::size_t body) { return linearVelocity(model.mass, world.scene().state(body)).x(); };
+  EXPECT_NEAR(v(0), 0.15, 1e-12);  // steps 0…149: the renewal at 0.05 s moved its expiry to 0.15 s
+  EXPECT_NEAR(v(1), 0.10, 1e-12);  // steps 20…119
+  EXPECT_NEAR(v(2), 0.10, 1e-12);  // steps 50…149
+  EXPECT_EQ(world.counters().wrench_timeouts, 3u);
+  world.setWrench(1, worldForce(2.0), seconds(1.0));  // a body can be scheduled again after it expired
+  world.update(seconds(1.5));
+  EXPECT_NEAR(v(1), 0.10 + 0.2, 1e-12);
+}
