@@ -32,6 +32,8 @@ MassProperties::MassProperties(double mass, const Eigen::Matrix3d& I_Bcm_B,
       I_Bcm_B_inv_(R_BP * principal_moments.cwiseInverse().asDiagonal() * R_BP.transpose()),
       principal_moments_(principal_moments),
       R_BP_(R_BP),
+      q_BP_(Eigen::Quaterniond(R_BP).normalized()),
+      principal_is_body_(R_BP == Eigen::Matrix3d::Identity()),
       // Isotropic only when the tensor is exactly I₀𝟙 up to rounding, so that ω = L/I₀ is the same number.
       isotropic_((I_Bcm_B - I_Bcm_B(0, 0) * Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() <=
                  1e-15 * std::abs(I_Bcm_B(0, 0))) {}

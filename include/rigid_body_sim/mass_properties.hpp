@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <stdexcept>
 #include <string>
 
@@ -54,6 +55,11 @@ class MassProperties {
   /// R_BP: columns are the principal axes in body coordinates (a proper rotation), so that
   /// I_Bcm_B = R_BP diag(principalMoments()) R_BPᵀ.
   const Eigen::Matrix3d& principalAxes() const { return R_BP_; }
+  /// R_BP as a unit quaternion q_BP (computed once).
+  const Eigen::Quaterniond& principalAxesRotation() const { return q_BP_; }
+  /// True when R_BP is the identity: the body axes are the principal axes (a diagonal inertia in ascending
+  /// order, as boxes, cylinders and most shapes give), so no change of axes is needed.
+  bool principalAxesAreBodyAxes() const { return principal_is_body_; }
   /// True when I_Bcm_B = I₀𝟙 (sphere, cube): then ω = L/I₀ in any axes. Decided once, at construction.
   bool isIsotropic() const { return isotropic_; }
 
@@ -67,6 +73,8 @@ class MassProperties {
   Eigen::Matrix3d I_Bcm_B_inv_;
   Eigen::Vector3d principal_moments_;
   Eigen::Matrix3d R_BP_;
+  Eigen::Quaterniond q_BP_;
+  bool principal_is_body_;
   bool isotropic_;
 };
 

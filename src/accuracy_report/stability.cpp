@@ -28,7 +28,6 @@ Model principalBody(const Eigen::Vector3d& moments, double mass = 1.0) {
   return reference::principalBody(moments, mass, InertiaCheck::kPositiveDefiniteOnly);
 }
 
-bool isSplitting(IntegratorType type) { return type == IntegratorType::kSymplecticSplitting; }
 
 // What a run of N steps saw.
 struct RunSummary {

@@ -5,11 +5,49 @@
 namespace rigid_body {
 namespace integrators {
 
-// Semi-implicit (symplectic) Euler: the momenta take the wrench of Y_n, then the configuration moves with
-// the new velocities: x += h P_{n+1}/M and q ← exp(h ω_{n+1}) ⊗ q with ω_{n+1} = I⁻¹(q_n) L_{n+1}.
+namespace {
+
+// The torque-free rotation over h at fixed world L, to first order and without trigonometry: the body turns
+// about its principal axes a, b, c in turn (smallest moment first, as the splitting composes them), each
+// by the Cayley rotation (1, t e_i), t = h m_i/(2 I_i), an angle 2 atan(t) = h m_i/I_i + O(h³). Each turn
+// keeps m_i and R m = L, so world L stays exact and the map is a Poisson map of the free body (a first-order
+// splitting of H = Σ m_i²/(2 I_i) into flows of functions of one m_i each): the energy error stays bounded.
+// The body momentum m (principal axes) turns the other way, by the same angle's rational cosine and sine.
+void cayleyFreeRotation(const MassProperties& mass, double h, State& s) {
+  const bool body_axes = mass.principalAxesAreBodyAxes();
+  const Eigen::Quaterniond& q_BP = mass.principalAxesRotation();
+  const Eigen::Quaterniond q_WP = body_axes ? s.q_WB : s.q_WB * q_BP;
+  Eigen::Vector3d m = q_WP.conjugate() * s.L_W;  // body momentum in principal axes
+  const Eigen::Vector3d& I = mass.principalMoments();
+  Eigen::Quaterniond r(1.0, 0.0, 0.0, 0.0);  // the turn in principal axes, unnormalised (one sqrt at the end)
+  for (int a = 0; a < 3; ++a) {
+    const double t = 0.5 * h * m(a) / I(a);
+    Eigen::Quaterniond turn(1.0, 0.0, 0.0, 0.0);
+    turn.coeffs()(a) = t;  // (x, y, z, w) storage: the vector part along e_a
+    r = r * turn;
+    const int j = (a + 1) % 3, k = (a + 2) % 3;
+    const double d = 1.0 / (1.0 + t * t), c = (1.0 - t * t) * d, sn = 2.0 * t * d;
+    const double mj = m(j), mk = m(k);
+    m(j) = c * mj + sn * mk;
+    m(k) = -sn * mj + c * mk;
+  }
+  s.q_WB = body_axes ? q_WP * r : q_WP * r * q_BP.conjugate();  // normalised by the caller
+}
+
+}  // namespace
+
+// Semi-implicit (symplectic) Euler: the momenta take the wrench of Y_n, then the configuration moves with the
+// new momenta: x += h P_{n+1}/M, and the body turns by the free rotation at L_{n+1} over h, to first order
+// (cayleyFreeRotation; a symmetric top by its exact flow). Turning instead by exp(h ω) with ω = I⁻¹(q_n)
+// L_{n+1} frozen over the step puts all of the error into the energy, which drifts and moves the flip times
+// (0.46 rad off on the T handle I = (1, 2, 3), ω_B = (0.01, 10, 0.01) at h = 1e-5 over 20 s, against 4e-5 rad
+// now). An isotropic body turns by exp(h L/I₀), which is exact.
 State semiImplicitEulerStep(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h,
                             const State& y) {
-  const Motion motion = motionOf(model.mass, y, terms);
+  // The kick needs ω only for angular damping; the rotation below does not use it at all.
+  StepTerms kick_terms = terms;
+  kick_terms.rotation = terms.angular_damping;
+  const Motion motion = motionOf(model.mass, y, kick_terms);
   const Wrench wrench = totalWrench(model, terms, motion, input);
   State next = y;
   next.P_W = y.P_W + h * wrench.force;
@@ -17,7 +55,11 @@ State semiImplicitEulerStep(const Model& model, const StepTerms& terms, const Ap
   next.t = y.t + h;
   if (!terms.rotation) return next;
   next.L_W = y.L_W + h * wrench.torque;
-  next.q_WB = quaternionExp(h * applyWorldInverseInertia(model.mass, terms, motion.R_WB, next.L_W)) * y.q_WB;
+  if (terms.world_inertia) {
+    if (!symmetricTopFlow(model.mass, h, next)) cayleyFreeRotation(model.mass, h, next);
+  } else {
+    next.q_WB = quaternionExp((h * model.mass.inverseInertia()(0, 0)) * next.L_W) * y.q_WB;  // isotropic: exact
+  }
   return normalised(next);
 }
 

@@ -15,6 +15,9 @@ namespace integrators {
 State semiImplicitEulerStep(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h,
                             const State& y);
 State bussStep(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h, const State& y);
+/// A symmetric top (two equal principal moments) turns exactly over h at fixed world L: its two flows commute.
+/// Returns false, leaving s alone, for an asymmetric body (splitting.cpp).
+bool symmetricTopFlow(const MassProperties& mass, double h, State& s);
 StepStatus symplecticSplittingStep(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h,
                                    State& s);
 StepStatus implicitMidpointStep(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h,

@@ -82,16 +82,7 @@ void rotateAboutBodyAxis(const MassProperties& mass, int axis, double t, double 
 }
 
 StepStatus splitFreeRotation(const MassProperties& mass, double h, State& s) {
-  const Eigen::Vector3d& I = mass.principalMoments();  // ascending
-  const double tolerance = kEqualMoments * I(2);
-  if (I(1) - I(0) <= tolerance || I(2) - I(1) <= tolerance) {
-    // The odd axis s is the one not in the equal pair (either end; for a sphere its term vanishes).
-    const int odd = I(1) - I(0) <= tolerance ? 2 : 0;
-    const double I_r = I(1);
-    rotateAboutBodyAxis(mass, odd, h, 1.0 / I_r, s);
-    s.q_WB = quaternionExp((h / I_r) * s.L_W) * s.q_WB;
-    return StepStatus::kOk;
-  }
+  if (symmetricTopFlow(mass, h, s)) return StepStatus::kOk;
   rotateAboutBodyAxis(mass, 0, 0.5 * h, 0.0, s);
   rotateAboutBodyAxis(mass, 1, 0.5 * h, 0.0, s);
   rotateAboutBodyAxis(mass, 2, h, 0.0, s);
@@ -129,6 +120,19 @@ StepStatus midpointFreeRotation(const MassProperties& mass, double h, const Inte
 }
 
 }  // namespace
+
+// A symmetric top (two equal moments I_r) turns exactly: its two flows commute. False for an asymmetric body.
+bool symmetricTopFlow(const MassProperties& mass, double h, State& s) {
+  const Eigen::Vector3d& I = mass.principalMoments();  // ascending
+  const double tolerance = kEqualMoments * I(2);
+  if (I(1) - I(0) > tolerance && I(2) - I(1) > tolerance) return false;
+  // The odd axis s is the one not in the equal pair (either end; for a sphere its term vanishes).
+  const int odd = I(1) - I(0) <= tolerance ? 2 : 0;
+  const double I_r = I(1);
+  rotateAboutBodyAxis(mass, odd, h, 1.0 / I_r, s);
+  s.q_WB = quaternionExp((h / I_r) * s.L_W) * s.q_WB;
+  return true;
+}
 
 StepStatus symplecticSplittingStep(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h,
                                    State& s) {
