@@ -31,6 +31,7 @@ MassProperties::MassProperties(double mass, const Eigen::Matrix3d& I_Bcm_B,
       // body's det I would be 0, and Eigen's inverse NaN), and exactly symmetric.
       I_Bcm_B_inv_(R_BP * principal_moments.cwiseInverse().asDiagonal() * R_BP.transpose()),
       principal_moments_(principal_moments),
+      inverse_principal_moments_(principal_moments.cwiseInverse()),
       R_BP_(R_BP),
       q_BP_(Eigen::Quaterniond(R_BP).normalized()),
       principal_is_body_(R_BP == Eigen::Matrix3d::Identity()),

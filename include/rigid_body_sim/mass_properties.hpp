@@ -52,6 +52,8 @@ class MassProperties {
   const Eigen::Matrix3d& inverseInertia() const { return I_Bcm_B_inv_; }///< I_Bcm_B⁻¹ [1/(kg m^2)]
   /// Principal moments in ascending order [kg m^2].
   const Eigen::Vector3d& principalMoments() const { return principal_moments_; }
+  /// Their inverses [1/(kg m^2)], computed once (the hot step multiplies instead of dividing).
+  const Eigen::Vector3d& inversePrincipalMoments() const { return inverse_principal_moments_; }
   /// R_BP: columns are the principal axes in body coordinates (a proper rotation), so that
   /// I_Bcm_B = R_BP diag(principalMoments()) R_BPᵀ.
   const Eigen::Matrix3d& principalAxes() const { return R_BP_; }
@@ -72,6 +74,7 @@ class MassProperties {
   Eigen::Matrix3d I_Bcm_B_;
   Eigen::Matrix3d I_Bcm_B_inv_;
   Eigen::Vector3d principal_moments_;
+  Eigen::Vector3d inverse_principal_moments_;
   Eigen::Matrix3d R_BP_;
   Eigen::Quaterniond q_BP_;
   bool principal_is_body_;

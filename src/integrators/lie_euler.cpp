@@ -13,15 +13,17 @@ namespace {
 // keeps m_i and R m = L, so world L stays exact and the map is a Poisson map of the free body (a first-order
 // splitting of H = Σ m_i²/(2 I_i) into flows of functions of one m_i each): the energy error stays bounded.
 // The body momentum m (principal axes) turns the other way, by the same angle's rational cosine and sine.
-void cayleyFreeRotation(const MassProperties& mass, double h, State& s) {
+// R_WB, if not null, is R(q) of s already formed by the caller: Rᵀ L is then one matrix–vector product.
+void cayleyFreeRotation(const MassProperties& mass, double h, const Eigen::Matrix3d* R_WB, State& s) {
   const bool body_axes = mass.principalAxesAreBodyAxes();
   const Eigen::Quaterniond& q_BP = mass.principalAxesRotation();
   const Eigen::Quaterniond q_WP = body_axes ? s.q_WB : s.q_WB * q_BP;
-  Eigen::Vector3d m = q_WP.conjugate() * s.L_W;  // body momentum in principal axes
-  const Eigen::Vector3d& I = mass.principalMoments();
+  // The body momentum in principal axes.
+  Eigen::Vector3d m = body_axes && R_WB ? Eigen::Vector3d(R_WB->transpose() * s.L_W) : q_WP.conjugate() * s.L_W;
+  const Eigen::Vector3d& inverse_I = mass.inversePrincipalMoments();
   Eigen::Quaterniond r(1.0, 0.0, 0.0, 0.0);  // the turn in principal axes, unnormalised (one sqrt at the end)
   for (int a = 0; a < 3; ++a) {
-    const double t = 0.5 * h * m(a) / I(a);
+    const double t = (0.5 * h * inverse_I(a)) * m(a);
     Eigen::Quaterniond turn(1.0, 0.0, 0.0, 0.0);
     turn.coeffs()(a) = t;  // (x, y, z, w) storage: the vector part along e_a
     r = r * turn;
@@ -56,7 +58,8 @@ State semiImplicitEulerStep(const Model& model, const StepTerms& terms, const Ap
   if (!terms.rotation) return next;
   next.L_W = y.L_W + h * wrench.torque;
   if (terms.world_inertia) {
-    if (!symmetricTopFlow(model.mass, h, next)) cayleyFreeRotation(model.mass, h, next);
+    const bool have_R = kick_terms.rotation || kick_terms.input;  // motionOf formed R(q_n) for the kick
+    if (!symmetricTopFlow(model.mass, h, next)) cayleyFreeRotation(model.mass, h, have_R ? &motion.R_WB : nullptr, next);
   } else {
     next.q_WB = quaternionExp((h * model.mass.inverseInertia()(0, 0)) * next.L_W) * y.q_WB;  // isotropic: exact
   }
