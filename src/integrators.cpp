@@ -2,7 +2,6 @@
 // The methods themselves live in src/integrators/, one family per file.
 #include "rigid_body_sim/integrators.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -45,19 +44,11 @@ const std::vector<IntegratorType>& allIntegrators() {
   return all;
 }
 
-const std::string& integratorName(IntegratorType type) {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> result;
-    for (IntegratorType t : allIntegrators()) result.push_back(infoOf(t).name);
-    return result;
-  }();
-  const auto& all = allIntegrators();
-  return names[static_cast<std::size_t>(std::find(all.begin(), all.end(), type) - all.begin())];
-}
+const std::string& integratorName(IntegratorType type) { return infoOf(type).name; }
 
 std::string integratorNameList() {
   std::string list;
-  for (const IntegratorInfo& info : integratorRegistry()) list += (list.empty() ? "" : ", ") + std::string(info.name);
+  for (const IntegratorInfo& info : integratorRegistry()) list += (list.empty() ? "" : ", ") + info.name;
   return list;
 }
 

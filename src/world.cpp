@@ -30,14 +30,6 @@ std::int64_t saturatingSubtract(std::int64_t a, std::int64_t b) {
   return difference;
 }
 
-bool isFinite(const AppliedWrench& wrench) { return wrench.world.isFinite() && wrench.body.isFinite(); }
-
-AppliedWrench& operator+=(AppliedWrench& sum, const AppliedWrench& add) {
-  sum.world += add.world;
-  sum.body += add.body;
-  return sum;
-}
-
 }  // namespace
 
 Nanoseconds toNanoseconds(double seconds) {
@@ -323,7 +315,7 @@ bool World::aboutCentreOfMass(const Command& command, AppliedWrench& wrench) {
     moved.world = wrenchAboutCentreOfMass(command.wrench.world.force, command.wrench.world.torque, command.p_WQ,
                                           scene_.state(command.body).p_WB);
   }
-  if (!isFinite(moved)) {
+  if (!moved.isFinite()) {
     ++counters_.refused_moment_arms;
     return false;
   }
@@ -372,14 +364,14 @@ World::Command World::wrenchCommand(CommandKind kind, std::size_t body, const Ap
 CommandReply World::setWrench(std::size_t body, const AppliedWrench& wrench, Nanoseconds arrival,
                               const Eigen::Vector3d* p_WQ) {
   if (body < bodyCount() && !scene_.takesInput(body) && !wrench.isZero()) return {false, "this body takes no wrench input"};
-  if (!isFinite(wrench) || (p_WQ && !p_WQ->allFinite())) return {false, "refused: a non-finite wrench or point"};
+  if (!wrench.isFinite() || (p_WQ && !p_WQ->allFinite())) return {false, "refused: a non-finite wrench or point"};
   return submit(wrenchCommand(CommandKind::kTopicWrench, body, wrench, arrival, p_WQ));
 }
 
 CommandReply World::applyWrench(std::size_t body, const AppliedWrench& wrench, Nanoseconds start, double duration,
                                 Nanoseconds arrival, const Eigen::Vector3d* p_WQ) {
   if (body < bodyCount() && !scene_.takesInput(body)) return {false, "this body takes no wrench input"};
-  if (!isFinite(wrench) || (p_WQ && !p_WQ->allFinite())) return {false, "refused: a non-finite wrench or point"};
+  if (!wrench.isFinite() || (p_WQ && !p_WQ->allFinite())) return {false, "refused: a non-finite wrench or point"};
   if (std::isnan(duration) || std::isinf(duration)) return {false, "refused: the duration must be finite"};
   if (body < bodyCount() && inputs_[body].timed.size() >= settings_.max_timed_wrenches) {
     ++counters_.refused_commands;

@@ -29,6 +29,12 @@ struct AppliedWrench {
   Wrench body;   ///< F_B, τ_B: fixed in body axes
 
   bool operator==(const AppliedWrench& other) const { return world == other.world && body == other.body; }
+  AppliedWrench& operator+=(const AppliedWrench& other) {
+    world += other.world;
+    body += other.body;
+    return *this;
+  }
+  bool isFinite() const { return world.isFinite() && body.isFinite(); }
   /// No input at all (every component exactly zero).
   bool isZero() const { return *this == AppliedWrench(); }
 };

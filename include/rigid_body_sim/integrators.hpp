@@ -31,7 +31,7 @@ enum class IntegratorType {
 /// One row of the registry: everything the node, the report and the documentation say about a method.
 struct IntegratorInfo {
   IntegratorType type;
-  const char* name;     ///< the parameter value, e.g. "rk4"
+  std::string name;     ///< the parameter value, e.g. "rk4"
   int order;            ///< nominal order of accuracy: the global error is O(h^order)
   const char* summary;  ///< one line for tables and logs
 };
