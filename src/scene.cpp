@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "contact/contact_step.hpp"
 #include "rigid_body_sim/kinematics.hpp"
 
 namespace rigid_body {
@@ -24,7 +25,7 @@ const char* divergenceName(Divergence divergence) {
 }
 
 Scene::Scene(const std::vector<BodyDefinition>& bodies, IntegratorType integrator, double dt,
-             const IntegratorSettings& settings, StepAssembly assembly)
+             const IntegratorSettings& settings, StepAssembly assembly, const ContactSetup& contact)
     : integrator_type_(integrator), settings_(settings), assembly_(assembly), dt_(dt) {
   if (!std::isfinite(dt) || dt <= 0.0) throw std::invalid_argument("dt must be a finite number > 0 [s]");
   if (bodies.empty()) throw std::invalid_argument("a scene needs at least one body");
@@ -34,16 +35,59 @@ Scene::Scene(const std::vector<BodyDefinition>& bodies, IntegratorType integrato
     states_.push_back(body.initial);
     records_.push_back(BodyRecord{body.initial, body.takes_input});
   }
+  collider_of_.assign(bodies.size(), kNoCollider);
+  if (contact.active()) {
+    if (contact.bodies.size() != bodies.size()) throw std::invalid_argument("contact: one entry per body is needed");
+    validateContactSettings(contact.settings);
+    for (const CollisionShape& shape : contact.environment) validateShape(shape, true);
+    std::vector<std::size_t> colliders;
+    for (std::size_t body = 0; body < bodies.size(); ++body) {
+      if (!contact.bodies[body]) continue;
+      validateShape(*contact.bodies[body], false);
+      collider_of_[body] = colliders.size();
+      colliders.push_back(body);
+    }
+    contact_ = std::make_unique<contact::ContactStep>(contact, colliders);
+    contact_->start(states_);
+    collider_running_.assign(colliders.size(), 1);
+    collider_failed_.assign(colliders.size(), StepStatus::kOk);
+  }
   terms_.resize(bodies.size());
   for (std::size_t body = 0; body < bodies.size(); ++body) assemble(body);
   inputs_.assign(bodies.size(), AppliedWrench());
   integrators_.assign(bodies.size(), Integrator(integrator, settings));
 }
 
+Scene::~Scene() = default;
+Scene::Scene(Scene&&) noexcept = default;
+Scene& Scene::operator=(Scene&&) noexcept = default;
+
 void Scene::assemble(std::size_t body) {
-  terms_[body] = assembly_ == StepAssembly::kGeneral
-                     ? StepTerms::all()
-                     : assembleTerms(models_[body].mass, models_[body].forces, states_[body], records_[body].takes_input);
+  if (assembly_ == StepAssembly::kGeneral) {
+    terms_[body] = StepTerms::all();
+    return;
+  }
+  terms_[body] = assembleTerms(models_[body].mass, models_[body].forces, states_[body], records_[body].takes_input);
+  // A contact off the centre of mass makes a torque: a colliding body can always come to spin.
+  if (collides(body)) terms_[body].rotation = true;
+}
+
+void Scene::setRecordContacts(bool record) {
+  if (contact_) contact_->setRecording(record);
+}
+
+const std::vector<Contact>& Scene::contacts(std::size_t body) const {
+  static const std::vector<Contact> kNone;
+  return collides(body) ? contact_->contacts(collider_of_[body]) : kNone;
+}
+
+ContactStatistics Scene::contactStatistics() const {
+  return contact_ ? contact_->statistics() : ContactStatistics();
+}
+
+const std::vector<ImpactEvent>& Scene::impacts() const {
+  static const std::vector<ImpactEvent> kNone;
+  return contact_ ? contact_->impacts() : kNone;
 }
 
 void Scene::setInput(std::size_t body, const AppliedWrench& input) {
@@ -70,12 +114,45 @@ SceneStepResult Scene::step(std::int64_t steps) {
   if (steps <= 0) return result;
   for (std::size_t body = 0; body < states_.size(); ++body) {
     if (records_[body].divergence != Divergence::kNone) continue;  // it holds its last good state until reset
+    if (collides(body)) continue;                                   // stepped with the contact below
     StepStatus status = StepStatus::kOk;
     result.steps = std::max(result.steps, stepBody(body, steps, status));
     if (status != StepStatus::kOk && result.status == StepStatus::kOk) result.status = status;
     result.diverged = result.diverged || records_[body].divergence != Divergence::kNone;
   }
+  if (contact_) stepColliders(steps, result);
   return result;
+}
+
+void Scene::stepColliders(std::int64_t steps, SceneStepResult& result) {
+  const std::vector<std::size_t>& colliders = contact_->colliders();
+  contact::SceneBodies arrays{models_, terms_, states_, inputs_, integrators_};
+  std::int64_t done = 0;
+  for (; done < steps; ++done) {
+    bool any = false;
+    for (std::size_t k = 0; k < colliders.size(); ++k) {
+      collider_running_[k] = records_[colliders[k]].divergence == Divergence::kNone;
+      any = any || collider_running_[k];
+    }
+    if (!any) break;
+    std::fill(collider_failed_.begin(), collider_failed_.end(), StepStatus::kOk);
+    contact_->step(arrays, collider_running_, dt_, collider_failed_);
+    for (std::size_t k = 0; k < colliders.size(); ++k) {
+      BodyRecord& record = records_[colliders[k]];
+      if (!collider_running_[k]) continue;
+      const StepStatus status = collider_failed_[k];
+      if (status == StepStatus::kOk) {
+        ++record.integrated_steps;
+        continue;
+      }
+      if (result.status == StepStatus::kOk) result.status = status;
+      if (status == StepStatus::kNonFinite || status == StepStatus::kNotConverged) {
+        record.divergence = status == StepStatus::kNonFinite ? Divergence::kNonFiniteState : Divergence::kStepFailure;
+        result.diverged = true;
+      }
+    }
+  }
+  result.steps = std::max(result.steps, done);
 }
 
 std::int64_t Scene::stepBody(std::size_t body, std::int64_t steps, StepStatus& status) {
@@ -118,12 +195,14 @@ void Scene::reset() {
   std::fill(inputs_.begin(), inputs_.end(), AppliedWrench());
   // dopri5's memory restarts by itself from a state it did not return; a fresh integrator says so plainly.
   integrators_.assign(states_.size(), Integrator(integrator_type_, settings_));
+  if (contact_) contact_->restart(states_);
 }
 
 bool Scene::setState(std::size_t body, const State& state) {
   if (!isFinite(state)) return false;
   states_[body] = state;
   assemble(body);
+  if (collides(body)) contact_->restart(states_);
   return true;
 }
 

@@ -5,14 +5,20 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <vector>
 
+#include "rigid_body_sim/contact.hpp"
 #include "rigid_body_sim/dynamics.hpp"
 #include "rigid_body_sim/integrators.hpp"
 #include "rigid_body_sim/state.hpp"
 #include "rigid_body_sim/step_terms.hpp"
 
 namespace rigid_body {
+
+namespace contact {
+class ContactStep;
+}
 
 /// Why a body stopped integrating; kNone while it runs.
 enum class Divergence {
@@ -44,16 +50,24 @@ struct SceneStepResult {
   bool diverged = false;                ///< this call latched some body's divergence
 };
 
-/// Bodies sharing one integrator method and dt. The bodies are independent (no contact, no joints): each
-/// steps with its own model, terms, input and integrator memory, body by body over contiguous arrays: no
-/// allocation, no virtual call, a cost linear in the bodies. A body whose step fails or whose energy grows
+/// Bodies sharing one integrator method and dt. A body without a collision shape is independent: it steps
+/// with its own model, terms, input and integrator memory, body by body over contiguous arrays: no
+/// allocation, no virtual call, a cost linear in the bodies. The colliding bodies step together, one step
+/// at a time, with the contact step between them (docs/contact.md); a scene without colliders has no
+/// contact step at all (the same trajectory, bit for bit, and the same cost as without contact). A body whose step fails or whose energy grows
 /// beyond the guard latches its own divergence and holds its last good state; the others go on.
 /// Accessors without a body index mean body 0 (the one-body shorthand).
 class Scene {
  public:
   /// Throws std::invalid_argument for no bodies, a non-finite initial state or a dt that is not > 0.
+  /// With contact: throws std::invalid_argument for invalid shapes or settings, or a body that starts inside
+  /// another or the environment (the message names both).
   Scene(const std::vector<BodyDefinition>& bodies, IntegratorType integrator, double dt,
-        const IntegratorSettings& settings = IntegratorSettings(), StepAssembly assembly = StepAssembly::kLeaveOut);
+        const IntegratorSettings& settings = IntegratorSettings(), StepAssembly assembly = StepAssembly::kLeaveOut,
+        const ContactSetup& contact = ContactSetup());
+  ~Scene();
+  Scene(Scene&&) noexcept;
+  Scene& operator=(Scene&&) noexcept;
 
   /// The divergence guard: when no wrench is commanded, the mechanical energy E = T + V may not grow by more
   /// than this factor (> 1) within one step() call; physics allows no growth at all then (damping only
@@ -94,6 +108,19 @@ class Scene {
   /// A body's state at construction (and after every reset), for drift diagnostics.
   const State& initialState(std::size_t body = 0) const { return records_[body].initial; }
 
+  /// Contact: whether the scene has a contact step, whether a body collides, and what the last step found.
+  bool hasContact() const { return contact_ != nullptr; }
+  bool collides(std::size_t body) const { return contact_ != nullptr && collider_of_[body] != kNoCollider; }
+  /// Keeps each colliding body's contacts of the last step (off by default: nothing is gathered unasked).
+  void setRecordContacts(bool record);
+  /// A colliding body's contacts at the end of the last step (empty unless recording).
+  const std::vector<Contact>& contacts(std::size_t body) const;
+  /// Touching points of a colliding body at the end of the last step (counted while recording).
+  std::size_t contactCount(std::size_t body) const { return contacts(body).size(); }
+  ContactStatistics contactStatistics() const;
+  /// The last impacts located in time, oldest first.
+  const std::vector<ImpactEvent>& impacts() const;
+
  private:
   // What the step loop does not read: kept apart so the hot arrays stay dense.
   struct BodyRecord {
@@ -103,8 +130,12 @@ class Scene {
     std::int64_t integrated_steps = 0;
   };
 
+  static constexpr std::size_t kNoCollider = std::numeric_limits<std::size_t>::max();
+
   // One body's `steps` steps and its divergence check; returns the steps done.
   std::int64_t stepBody(std::size_t body, std::int64_t steps, StepStatus& status);
+  // The colliding bodies' `steps` steps together with contact.
+  void stepColliders(std::int64_t steps, SceneStepResult& result);
   void assemble(std::size_t body);
 
   // The hot arrays, one entry per body. models_ never changes after construction.
@@ -119,6 +150,10 @@ class Scene {
   StepAssembly assembly_;
   double dt_;
   double max_energy_growth_ = std::numeric_limits<double>::infinity();
+  std::unique_ptr<contact::ContactStep> contact_;  // null: no body collides
+  std::vector<std::size_t> collider_of_;            // body → its index among the colliders, or kNoCollider
+  std::vector<char> collider_running_;              // per collider, reused
+  std::vector<StepStatus> collider_failed_;         // per collider, reused
 };
 
 }  // namespace rigid_body

@@ -1,0 +1,124 @@
+#include "rigid_body_sim/collision_shape.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "rigid_body_sim/contact.hpp"
+
+namespace rigid_body {
+
+const char* shapeTypeName(ShapeType type) {
+  switch (type) {
+    case ShapeType::kPlane:
+      return "plane";
+    case ShapeType::kBox:
+      return "box";
+    case ShapeType::kSphere:
+      return "sphere";
+    case ShapeType::kCylinder:
+      return "cylinder";
+    case ShapeType::kCapsule:
+      return "capsule";
+    case ShapeType::kMesh:
+      return "mesh";
+  }
+  return "unknown";
+}
+
+double innerRadius(const CollisionShape& shape) {
+  const Eigen::Vector3d& s = shape.size;
+  switch (shape.type) {
+    case ShapeType::kBox:
+      return 0.5 * s.minCoeff();
+    case ShapeType::kSphere:
+    case ShapeType::kCapsule:
+      return s.x();
+    case ShapeType::kCylinder:
+      return std::min(s.x(), 0.5 * s.y());
+    case ShapeType::kMesh: {
+      // The box of the vertices bounds the hull from outside; a tenth of its smallest side is a safe guess
+      // from inside for any hull that is not a sliver (a sliver sweeps more often, which costs, not fails).
+      Eigen::Vector3d low = shape.mesh.vertices.front(), high = low;
+      for (const auto& v : shape.mesh.vertices) low = low.cwiseMin(v), high = high.cwiseMax(v);
+      return 0.1 * (high - low).minCoeff();
+    }
+    case ShapeType::kPlane:
+      return 0.0;
+  }
+  return 0.0;
+}
+
+void validateShape(const CollisionShape& shape, bool in_environment) {
+  const std::string what = std::string(shapeTypeName(shape.type)) + (shape.name.empty() ? "" : " '" + shape.name + "'");
+  if (!(shape.material.restitution >= 0.0 && shape.material.restitution <= 1.0)) {
+    throw std::invalid_argument(what + ": restitution must be in [0, 1]");
+  }
+  if (!(shape.material.friction >= 0.0) || !std::isfinite(shape.material.friction)) {
+    throw std::invalid_argument(what + ": friction must be a finite number >= 0");
+  }
+  if (!shape.pose.matrix().allFinite()) throw std::invalid_argument(what + ": pose must be finite");
+  const Eigen::Vector3d& s = shape.size;
+  auto positive = [&](int count) {
+    for (int i = 0; i < count; ++i) {
+      if (!(s[i] > 0.0) || !std::isfinite(s[i])) throw std::invalid_argument(what + ": sizes must be finite and > 0");
+    }
+  };
+  switch (shape.type) {
+    case ShapeType::kPlane:
+      if (!in_environment) throw std::invalid_argument("a plane can only be part of the environment");
+      if (!shape.normal.allFinite() || !(shape.normal.norm() > 0.0) || !std::isfinite(shape.offset)) {
+        throw std::invalid_argument(what + ": needs a finite non-zero normal and a finite offset");
+      }
+      return;
+    case ShapeType::kBox:
+      return positive(3);
+    case ShapeType::kSphere:
+      return positive(1);
+    case ShapeType::kCylinder:
+    case ShapeType::kCapsule:
+      return positive(2);
+    case ShapeType::kMesh: {
+      if (shape.mesh.vertices.size() < 4 || shape.mesh.triangles.size() < 4) {
+        throw std::invalid_argument(what + ": a collision mesh needs at least 4 vertices and 4 triangles");
+      }
+      Eigen::Vector3d low = shape.mesh.vertices.front(), high = low;
+      for (const auto& v : shape.mesh.vertices) {
+        if (!v.allFinite()) throw std::invalid_argument(what + ": mesh vertices must be finite");
+        low = low.cwiseMin(v), high = high.cwiseMax(v);
+      }
+      if (!((high - low).minCoeff() > 0.0)) throw std::invalid_argument(what + ": the mesh is flat (no volume)");
+      for (const auto& t : shape.mesh.triangles) {
+        for (int i : t) {
+          if (i < 0 || static_cast<std::size_t>(i) >= shape.mesh.vertices.size()) {
+            throw std::invalid_argument(what + ": a triangle refers to a vertex that does not exist");
+          }
+        }
+      }
+      return;
+    }
+  }
+}
+
+void validateContactSettings(const ContactSettings& s) {
+  auto require = [](bool ok, const char* message) {
+    if (!ok) throw std::invalid_argument(message);
+  };
+  require(s.iterations >= 1 && s.iterations <= 10000, "contact iterations must be an integer in [1, 10000]");
+  require(s.position_iterations >= 0 && s.position_iterations <= 10000,
+          "contact position_iterations must be an integer in [0, 10000]");
+  require(s.restitution_threshold >= 0.0 && std::isfinite(s.restitution_threshold),
+          "contact restitution_threshold must be a finite number >= 0 [m/s]");
+  require(s.penetration_slop >= 0.0 && s.penetration_slop <= 1.0, "contact penetration_slop must be in [0, 1] [m]");
+  require(s.position_correction >= 0.0 && s.position_correction <= 1.0, "contact position_correction must be in [0, 1]");
+  require(s.event_tolerance > 0.0 && s.event_tolerance <= 1.0, "contact event_tolerance must be in (0, 1] [s]");
+}
+
+bool ContactSetup::active() const {
+  for (const auto& body : bodies) {
+    if (body) return true;
+  }
+  return false;
+}
+
+}  // namespace rigid_body

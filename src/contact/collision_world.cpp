@@ -1,0 +1,339 @@
+#include "collision_world.hpp"
+
+#include <btBulletCollisionCommon.h>
+#include <BulletCollision/CollisionShapes/btConvexHullShape.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace rigid_body {
+namespace contact {
+
+namespace {
+
+btVector3 toBt(const Eigen::Vector3d& v) { return btVector3(v.x(), v.y(), v.z()); }
+Eigen::Vector3d fromBt(const btVector3& v) { return Eigen::Vector3d(v.x(), v.y(), v.z()); }
+btQuaternion toBt(const Eigen::Quaterniond& q) { return btQuaternion(q.x(), q.y(), q.z(), q.w()); }
+btTransform toBt(const Eigen::Isometry3d& X) {
+  const Eigen::Quaterniond q(X.rotation());
+  return btTransform(toBt(q), toBt(Eigen::Vector3d(X.translation())));
+}
+
+// GJK-based pairs round a convex shape's corners by its margin; Bullet's default (0.04 m) is large for
+// small bodies, so the margin is a small fraction of the shape, at most 4 mm.
+double marginFor(double smallest_extent) { return std::min(0.004, 0.05 * smallest_extent); }
+
+ContactPoint pointFrom(const btManifoldPoint& p, const btCollisionObject* a, const btCollisionObject* b) {
+  ContactPoint point;
+  point.a = static_cast<std::size_t>(a->getUserIndex());
+  point.b = static_cast<std::size_t>(b->getUserIndex());
+  point.on_a = fromBt(p.getPositionWorldOnA());
+  point.on_b = fromBt(p.getPositionWorldOnB());
+  point.normal = fromBt(p.m_normalWorldOnB);
+  point.distance = p.getDistance();
+  return point;
+}
+
+}  // namespace
+
+struct CollisionWorld::Impl {
+  btDefaultCollisionConfiguration configuration;
+  btCollisionDispatcher dispatcher{&configuration};
+  btDbvtBroadphase broadphase;
+  btCollisionWorld world{&dispatcher, &broadphase, &configuration};
+  std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  std::vector<std::unique_ptr<btTriangleMesh>> triangle_meshes;
+  std::vector<std::unique_ptr<btCollisionObject>> objects;  // bodies first, then the environment
+  std::vector<btTransform> body_offsets;                     // X_BS of each body's shape
+  std::size_t body_count = 0;
+  // Half-spaces are not in Bullet's world: a plane meets a body at the body's features (below).
+  struct Plane {
+    Eigen::Vector3d normal;
+    double offset;
+    std::size_t object;
+  };
+  std::vector<Plane> planes;
+  std::vector<CollisionShape> body_shapes;
+  std::vector<Eigen::Isometry3d> shape_poses;  // X_WS of each body's shape as last placed
+
+  Impl() {
+    // A face resting on a face needs several points in one pass (a box on the ground its four corners):
+    // the narrow phase perturbs the orientation to find them (Bullet's multi-point iterations).
+    configuration.setPlaneConvexMultipointIterations(4, 4);
+    configuration.setConvexConvexMultipointIterations(4, 4);
+  }
+
+  std::unique_ptr<btCollisionShape> makeShape(const CollisionShape& shape, bool in_environment) {
+    const Eigen::Vector3d& s = shape.size;
+    switch (shape.type) {
+      case ShapeType::kPlane:
+        return std::make_unique<btStaticPlaneShape>(toBt(shape.normal.normalized()), shape.offset);
+      case ShapeType::kBox: {
+        auto box = std::make_unique<btBoxShape>(toBt(0.5 * s));
+        box->setMargin(marginFor(s.minCoeff()));
+        return box;
+      }
+      case ShapeType::kSphere:
+        return std::make_unique<btSphereShape>(s.x());
+      case ShapeType::kCylinder: {
+        auto cylinder = std::make_unique<btCylinderShapeZ>(btVector3(s.x(), s.x(), 0.5 * s.y()));
+        cylinder->setMargin(marginFor(std::min(s.x(), 0.5 * s.y())));
+        return cylinder;
+      }
+      case ShapeType::kCapsule:
+        return std::make_unique<btCapsuleShapeZ>(s.x(), s.y());
+      case ShapeType::kMesh: {
+        if (in_environment) {
+          auto mesh = std::make_unique<btTriangleMesh>();
+          for (const auto& t : shape.mesh.triangles) {
+            mesh->addTriangle(toBt(shape.mesh.vertices[t[0]]), toBt(shape.mesh.vertices[t[1]]),
+                              toBt(shape.mesh.vertices[t[2]]));
+          }
+          auto bvh = std::make_unique<btBvhTriangleMeshShape>(mesh.get(), true);
+          triangle_meshes.push_back(std::move(mesh));
+          return bvh;
+        }
+        // A moving mesh collides as its convex hull (docs/contact.md): the narrow phases for convex
+        // shapes are exact and fast; a concave body needs a convex decomposition given as the shape.
+        auto hull = std::make_unique<btConvexHullShape>();
+        Eigen::Vector3d low = shape.mesh.vertices.front(), high = low;
+        for (const auto& v : shape.mesh.vertices) {
+          hull->addPoint(toBt(v), false);
+          low = low.cwiseMin(v), high = high.cwiseMax(v);
+        }
+        hull->recalcLocalAabb();
+        hull->setMargin(marginFor((high - low).minCoeff()));
+        return hull;
+      }
+    }
+    throw std::invalid_argument("unknown collision shape type");
+  }
+
+  btCollisionObject* add(const CollisionShape& shape, bool in_environment, int id) {
+    if (shape.type == ShapeType::kPlane) {
+      planes.push_back({shape.normal.normalized(), shape.offset, static_cast<std::size_t>(id)});
+      shapes.push_back(nullptr);
+      objects.push_back(nullptr);
+      return nullptr;
+    }
+    shapes.push_back(makeShape(shape, in_environment));
+    auto object = std::make_unique<btCollisionObject>();
+    object->setCollisionShape(shapes.back().get());
+    object->setUserIndex(id);
+    if (in_environment) {
+      object->setCollisionFlags(object->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT);
+      if (shape.type != ShapeType::kPlane) object->setWorldTransform(toBt(shape.pose));
+    } else {
+      object->setActivationState(DISABLE_DEACTIVATION);
+    }
+    // Static objects never test each other: bodies are in the default group, the environment in the static.
+    const int group = in_environment ? btBroadphaseProxy::StaticFilter : btBroadphaseProxy::DefaultFilter;
+    const int mask = in_environment ? btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter
+                                    : btBroadphaseProxy::AllFilter;
+    world.addCollisionObject(object.get(), group, mask);
+    objects.push_back(std::move(object));
+    return objects.back().get();
+  }
+
+};
+
+CollisionWorld::CollisionWorld(const std::vector<CollisionShape>& environment, const std::vector<CollisionShape>& bodies)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->body_count = bodies.size();
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    impl_->add(bodies[i], false, static_cast<int>(i));
+    impl_->body_offsets.push_back(toBt(bodies[i].pose));
+    impl_->body_shapes.push_back(bodies[i]);
+    if (bodies[i].type == ShapeType::kMesh) {  // only the hull's vertices can touch a plane
+      auto* hull = static_cast<btConvexHullShape*>(impl_->shapes.back().get());
+      impl_->body_shapes.back().mesh.vertices.clear();
+      impl_->body_shapes.back().mesh.triangles.clear();
+      hull->optimizeConvexHull();
+      for (int v = 0; v < hull->getNumPoints(); ++v) {
+        impl_->body_shapes.back().mesh.vertices.push_back(fromBt(hull->getUnscaledPoints()[v]));
+      }
+    }
+  }
+  impl_->shape_poses.assign(bodies.size(), Eigen::Isometry3d::Identity());
+  for (std::size_t i = 0; i < environment.size(); ++i) {
+    impl_->add(environment[i], true, static_cast<int>(bodies.size() + i));
+  }
+}
+
+CollisionWorld::~CollisionWorld() {
+  for (auto& object : impl_->objects) {
+    if (object) impl_->world.removeCollisionObject(object.get());
+  }
+}
+
+std::size_t CollisionWorld::bodyCount() const { return impl_->body_count; }
+
+void CollisionWorld::setPose(std::size_t body, const Eigen::Vector3d& p_WB, const Eigen::Quaterniond& q_WB) {
+  const btTransform X_WS = btTransform(toBt(q_WB), toBt(p_WB)) * impl_->body_offsets[body];
+  impl_->objects[body]->setWorldTransform(X_WS);
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = q_WB.toRotationMatrix();
+  pose.translation() = p_WB;
+  impl_->shape_poses[body] = pose * impl_->body_shapes[body].pose;
+}
+
+namespace {
+
+// The points of a convex shape (at pose X_WS) that can touch the half-space n·x ≤ offset first: a box's
+// corners, a hull's vertices, a sphere's lowest point, a capsule's two lowest points, a cylinder's lowest rim
+// point of each end and eight points around each rim (a cylinder standing on its end rests on its rim).
+// Half-space contact is exact this way and gives a face its whole manifold in one pass.
+template <typename Visit>
+void planeFeatures(const CollisionShape& shape, const Eigen::Isometry3d& X_WS, const Eigen::Vector3d& n, Visit visit) {
+  const Eigen::Vector3d& s = shape.size;
+  const Eigen::Vector3d c = X_WS.translation();
+  const Eigen::Vector3d axis = X_WS.linear().col(2);
+  switch (shape.type) {
+    case ShapeType::kBox:
+      for (int i = 0; i < 8; ++i) {
+        visit(X_WS * Eigen::Vector3d((i & 1 ? 0.5 : -0.5) * s.x(), (i & 2 ? 0.5 : -0.5) * s.y(),
+                                     (i & 4 ? 0.5 : -0.5) * s.z()));
+      }
+      return;
+    case ShapeType::kSphere:
+      return visit(c - s.x() * n);
+    case ShapeType::kCapsule:
+      visit(c + 0.5 * s.y() * axis - s.x() * n);
+      return visit(c - 0.5 * s.y() * axis - s.x() * n);
+    case ShapeType::kCylinder: {
+      const Eigen::Vector3d u = X_WS.linear().col(0), v = X_WS.linear().col(1);
+      Eigen::Vector3d down = -(n - n.dot(axis) * axis);
+      const bool tilted = down.norm() > 1e-9;
+      if (tilted) down.normalize();
+      for (double end : {-0.5, 0.5}) {
+        const Eigen::Vector3d centre = c + end * s.y() * axis;
+        if (tilted) visit(centre + s.x() * down);
+        for (int k = 0; k < 8; ++k) {
+          const double phi = k * 0.78539816339744830962;
+          visit(centre + s.x() * (std::cos(phi) * u + std::sin(phi) * v));
+        }
+      }
+      return;
+    }
+    case ShapeType::kMesh:
+      for (const auto& vertex : shape.mesh.vertices) visit(X_WS * vertex);
+      return;
+    case ShapeType::kPlane:
+      return;
+  }
+}
+
+}  // namespace
+
+void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distance) {
+  points.clear();
+  btDispatcher& dispatcher = impl_->dispatcher;
+  // Each step's manifold is made afresh: Bullet's persistence drops the points of a sliding face when they
+  // drift from where they were found; warm starting is the contact step's own (by matching points).
+  for (int m = 0; m < dispatcher.getNumManifolds(); ++m) dispatcher.getManifoldByIndexInternal(m)->clearManifold();
+  impl_->world.performDiscreteCollisionDetection();
+  for (int m = 0; m < dispatcher.getNumManifolds(); ++m) {
+    btPersistentManifold* manifold = dispatcher.getManifoldByIndexInternal(m);
+    for (int c = 0; c < manifold->getNumContacts(); ++c) {
+      const btManifoldPoint& p = manifold->getContactPoint(c);
+      if (p.getDistance() <= max_distance) points.push_back(pointFrom(p, manifold->getBody0(), manifold->getBody1()));
+    }
+  }
+  for (std::size_t body = 0; body < impl_->body_count; ++body) {
+    for (const Impl::Plane& plane : impl_->planes) planeContacts(body, plane.object, max_distance, points);
+  }
+}
+
+double CollisionWorld::planeContacts(std::size_t body, std::size_t plane_object, double max_distance,
+                                     std::vector<ContactPoint>& points) const {
+  const Impl::Plane* plane = nullptr;
+  for (const Impl::Plane& candidate : impl_->planes) {
+    if (candidate.object == plane_object) plane = &candidate;
+  }
+  double smallest = max_distance;
+  const Eigen::Vector3d& n = plane->normal;
+  planeFeatures(impl_->body_shapes[body], impl_->shape_poses[body], n, [&](const Eigen::Vector3d& x) {
+    const double distance = n.dot(x) - plane->offset;
+    smallest = std::min(smallest, distance);
+    if (distance > max_distance) return;
+    ContactPoint point;
+    point.a = body;
+    point.b = plane_object;
+    point.on_a = x;
+    point.on_b = x - distance * n;
+    point.normal = n;
+    point.distance = distance;
+    points.push_back(point);
+  });
+  return smallest;
+}
+
+bool CollisionWorld::isPlane(std::size_t object) const {
+  return !isBody(object) && impl_->objects[object] == nullptr;
+}
+
+namespace {
+
+struct PairCollector : btCollisionWorld::ContactResultCallback {
+  std::vector<ContactPoint>* points = nullptr;
+  double smallest = 0.0;
+  btScalar addSingleResult(btManifoldPoint& p, const btCollisionObjectWrapper* a, int, int,
+                           const btCollisionObjectWrapper* b, int, int) override {
+    smallest = std::min(smallest, static_cast<double>(p.getDistance()));
+    if (points) points->push_back(pointFrom(p, a->getCollisionObject(), b->getCollisionObject()));
+    return 0;
+  }
+};
+
+struct SweepCollector : btCollisionWorld::ClosestConvexResultCallback {
+  const btCollisionObject* self = nullptr;
+  SweepCollector(const btVector3& from, const btVector3& to) : ClosestConvexResultCallback(from, to) {}
+  bool needsCollision(btBroadphaseProxy* proxy) const override {
+    return static_cast<const btCollisionObject*>(proxy->m_clientObject) != self &&
+           ClosestConvexResultCallback::needsCollision(proxy);
+  }
+};
+
+}  // namespace
+
+double CollisionWorld::pairDistance(std::size_t a, std::size_t b, double max_distance, std::vector<ContactPoint>* points) {
+  if (isPlane(a) || isPlane(b)) {
+    std::vector<ContactPoint> scratch;
+    std::vector<ContactPoint>& out = points ? *points : scratch;
+    out.clear();
+    return isPlane(b) ? planeContacts(a, b, max_distance, out) : planeContacts(b, a, max_distance, out);
+  }
+  PairCollector collector;
+  collector.points = points;
+  collector.smallest = max_distance;
+  collector.m_closestDistanceThreshold = max_distance;
+  if (points) points->clear();
+  impl_->world.contactPairTest(impl_->objects[a].get(), impl_->objects[b].get(), collector);
+  return collector.smallest;
+}
+
+std::optional<SweepHit> CollisionWorld::sweep(std::size_t body, const Eigen::Vector3d& p_from,
+                                             const Eigen::Quaterniond& q_from, const Eigen::Vector3d& p_to,
+                                             const Eigen::Quaterniond& q_to) {
+  auto* shape = dynamic_cast<btConvexShape*>(impl_->shapes[body].get());
+  if (shape == nullptr) return std::nullopt;
+  const btTransform from = btTransform(toBt(q_from), toBt(p_from)) * impl_->body_offsets[body];
+  const btTransform to = btTransform(toBt(q_to), toBt(p_to)) * impl_->body_offsets[body];
+  SweepCollector collector(from.getOrigin(), to.getOrigin());
+  collector.self = impl_->objects[body].get();
+  impl_->world.convexSweepTest(shape, from, to, collector, 0.0);
+  if (!collector.hasHit()) return std::nullopt;
+  return SweepHit{collector.m_closestHitFraction,
+                  static_cast<std::size_t>(collector.m_hitCollisionObject->getUserIndex())};
+}
+
+void CollisionWorld::tangentBasis(const Eigen::Vector3d& normal, Eigen::Vector3d& t1, Eigen::Vector3d& t2) {
+  btVector3 a, b;
+  btPlaneSpace1(toBt(normal), a, b);
+  t1 = fromBt(a);
+  t2 = fromBt(b);
+}
+
+}  // namespace contact
+}  // namespace rigid_body

@@ -1,0 +1,77 @@
+// The collision library behind the contact step: Bullet's collision module (double precision), used for what
+// it is made for: a dynamic AABB tree broad phase, narrow phases per shape pair with persistent contact
+// manifolds (up to four points a pair, kept from step to step), pair distances and swept tests.
+// Nothing of Bullet leaves this file pair; the rest of the core sees Eigen types.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "rigid_body_sim/collision_shape.hpp"
+
+namespace rigid_body {
+namespace contact {
+
+/// One point of contact between two collision objects. Objects 0 … bodies−1 are the colliding bodies (in
+/// the order given), the rest the environment shapes.
+struct ContactPoint {
+  std::size_t a = 0, b = 0;
+  Eigen::Vector3d on_a = Eigen::Vector3d::Zero();     ///< witness point on a's surface, world [m]
+  Eigen::Vector3d on_b = Eigen::Vector3d::Zero();     ///< witness point on b's surface, world [m]
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< from b towards a, unit
+  double distance = 0.0;                              ///< signed: < 0 when penetrating [m]
+};
+
+/// A swept test's first hit: the fraction of the straight motion and the object hit.
+struct SweepHit {
+  double fraction = 1.0;
+  std::size_t object = 0;
+};
+
+class CollisionWorld {
+ public:
+  /// `bodies[i]` is the shape of colliding body i (its pose is in the body frame).
+  CollisionWorld(const std::vector<CollisionShape>& environment, const std::vector<CollisionShape>& bodies);
+  ~CollisionWorld();
+  CollisionWorld(const CollisionWorld&) = delete;
+  CollisionWorld& operator=(const CollisionWorld&) = delete;
+
+  std::size_t bodyCount() const;
+  bool isBody(std::size_t object) const { return object < bodyCount(); }
+
+  /// Places body i's shape for the body at (p_WB, q_WB).
+  void setPose(std::size_t body, const Eigen::Vector3d& p_WB, const Eigen::Quaterniond& q_WB);
+
+  /// Broad and narrow phase on the poses as set: every contact point no farther apart than `max_distance`
+  /// goes to `points` (cleared first), made afresh (no memory of the last call).
+  void detect(std::vector<ContactPoint>& points, double max_distance);
+
+  /// Whether an environment object is a half-space (handled here in closed form, not by Bullet).
+  bool isPlane(std::size_t object) const;
+
+  /// The closest points of two objects at their poses as set, no farther apart than `max_distance` [m];
+  /// none if they are farther. Returns the smallest signed distance, or +max_distance.
+  double pairDistance(std::size_t a, std::size_t b, double max_distance, std::vector<ContactPoint>* points);
+
+  /// Sweeps body i's shape along the straight motion from one pose to another (orientation interpolated)
+  /// against every other object; the first hit, if any.
+  std::optional<SweepHit> sweep(std::size_t body, const Eigen::Vector3d& p_from, const Eigen::Quaterniond& q_from,
+                                const Eigen::Vector3d& p_to, const Eigen::Quaterniond& q_to);
+
+  /// The tangent basis the friction impulses of a point are expressed in (a function of the normal alone,
+  /// so that it is the same from step to step while the normal is).
+  static void tangentBasis(const Eigen::Vector3d& normal, Eigen::Vector3d& t1, Eigen::Vector3d& t2);
+
+ private:
+  double planeContacts(std::size_t body, std::size_t plane_object, double max_distance,
+                       std::vector<ContactPoint>& points) const;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace contact
+}  // namespace rigid_body

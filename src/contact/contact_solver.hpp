@@ -1,0 +1,75 @@
+// The velocity-level contact solver: sequential impulses (projected Gauss–Seidel on the contact impulses,
+// Catto, "Iterative Dynamics with Temporal Coherence", GDC 2005) with warm starting, Newton's restitution
+// law on the normal and Coulomb's friction cone (the friction impulse projected onto the disc of radius
+// μ·normal impulse), then a position projection for what penetration remains (nonlinear Gauss–Seidel on
+// positions, which moves bodies without touching their momenta, so it adds no kinetic energy).
+// A contact with one point and no friction gives the impulse formula of Baraff & Witkin's notes
+// ("Rigid Body Simulation", §8): j = −(1+e) v⁻·n / (1/M_a + 1/M_b + n·(I_a⁻¹(r_a×n))×r_a + n·(I_b⁻¹(r_b×n))×r_b).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+namespace rigid_body {
+namespace contact {
+
+constexpr std::size_t kStatic = std::numeric_limits<std::size_t>::max();  ///< the environment: infinite mass
+
+/// A body as the solver sees it: inverse mass and world inverse inertia, working velocities, and the
+/// momentum and position changes it accumulates.
+struct SolverBody {
+  double inverse_mass = 0.0;
+  Eigen::Matrix3d inverse_inertia_W = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();       ///< [m/s]
+  Eigen::Vector3d w = Eigen::Vector3d::Zero();       ///< [rad/s]
+  Eigen::Vector3d dP = Eigen::Vector3d::Zero();      ///< Σ impulses [N s]
+  Eigen::Vector3d dL = Eigen::Vector3d::Zero();      ///< Σ r × impulse about the centre of mass [N m s]
+  Eigen::Vector3d dx = Eigen::Vector3d::Zero();      ///< position projection [m]
+  Eigen::Vector3d dtheta = Eigen::Vector3d::Zero();  ///< orientation projection, a rotation vector [rad]
+  bool touched = false;                             ///< some impulse or projection acted on it
+};
+
+/// One contact point between body a and body b (or the environment, kStatic), normal from b towards a.
+struct SolverContact {
+  std::size_t a = kStatic, b = kStatic;
+  Eigen::Vector3d r_a = Eigen::Vector3d::Zero(), r_b = Eigen::Vector3d::Zero();  ///< from each centre of mass
+  Eigen::Vector3d n = Eigen::Vector3d::UnitZ(), t1 = Eigen::Vector3d::UnitX(), t2 = Eigen::Vector3d::UnitY();
+  double separation = 0.0;     ///< signed distance when detected [m]
+  double friction = 0.0;       ///< μ
+  double restitution = 0.0;    ///< e
+  double target_speed = 0.0;   ///< the normal relative speed the solve aims at (≥ it)
+  double normal_mass = 0.0;    ///< 1 / (n·K n)
+  Eigen::Matrix2d tangent_mass = Eigen::Matrix2d::Zero();  ///< (T K Tᵀ)⁻¹ for the two tangents
+  double normal_impulse = 0.0;                             ///< accumulated [N s], ≥ 0
+  Eigen::Vector2d friction_impulse = Eigen::Vector2d::Zero();  ///< accumulated [N s], |·| ≤ μ normal_impulse
+};
+
+/// How a solve treats the approach velocity.
+struct SolveOptions {
+  int iterations = 20;
+  double restitution_threshold = 0.05;  ///< [m/s]
+  bool bounce = true;                   ///< apply restitution to approaches faster than the threshold
+  double dt = 0.0;                      ///< > 0: a separated contact (separation > 0) may close at separation/dt
+};
+
+/// The relative velocity of the contact point of a with respect to b's.
+Eigen::Vector3d relativeVelocity(const SolverContact& contact, const std::vector<SolverBody>& bodies);
+
+/// Effective masses and target speeds from the bodies' current velocities; keeps the warm-start impulses
+/// and applies them.
+void prepareContacts(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options);
+
+/// Sequential impulses until every contact meets its target within rounding or the iterations run out.
+void solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options);
+
+/// Position projection: moves bodies apart along the normals until no penetration beyond `slop` remains
+/// (a fraction `correction` of it per sweep). The separations count the bodies' dx and dtheta as they stand
+/// (what the step has already moved them since detection) to first order.
+void projectPositions(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, int iterations,
+                      double slop, double correction);
+
+}  // namespace contact
+}  // namespace rigid_body

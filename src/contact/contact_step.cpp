@@ -1,0 +1,402 @@
+#include "contact_step.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "rigid_body_sim/kinematics.hpp"
+
+namespace rigid_body {
+namespace contact {
+
+namespace {
+
+// Points of one pair this close to its deepest take part in a located impact together (a face landing flat
+// meets the ground at all its corners at once) [m].
+constexpr double kImpactPointTolerance = 1e-6;
+// The farthest apart a pair's distance is evaluated while an impact is located [m].
+constexpr double kDistanceRange = 1e3;
+// The root finder's most evaluations (regula falsi, Illinois variant: superlinear, bracketed).
+constexpr int kMaxRootIterations = 80;
+// A body sweeps its motion when it moves farther than this fraction of its inner radius in a step.
+constexpr double kSweepFraction = 0.5;
+// A point found this close to where a point of the same pair was last step (on the body) inherits its
+// impulses as the solver's first guess [m].
+constexpr double kWarmStartMatch = 2e-3;
+
+void rotate(Eigen::Quaterniond& q, const Eigen::Vector3d& rotation_W) {
+  const double angle = rotation_W.norm();
+  if (angle == 0.0) return;
+  q = (Eigen::Quaterniond(Eigen::AngleAxisd(angle, rotation_W / angle)) * q).normalized();
+}
+
+}  // namespace
+
+ContactStep::ContactStep(const ContactSetup& setup, const std::vector<std::size_t>& colliders)
+    : colliders_(colliders), settings_(setup.settings) {
+  std::vector<CollisionShape> shapes;
+  for (std::size_t body : colliders) {
+    shapes.push_back(*setup.bodies[body]);
+    materials_.push_back(shapes.back().material);
+    names_.push_back(shapes.back().name.empty() ? "body " + std::to_string(body) : shapes.back().name);
+    inner_radius_.push_back(innerRadius(shapes.back()));
+  }
+  for (std::size_t i = 0; i < setup.environment.size(); ++i) {
+    materials_.push_back(setup.environment[i].material);
+    names_.push_back(setup.environment[i].name.empty() ? "environment shape " + std::to_string(i)
+                                                       : setup.environment[i].name);
+  }
+  world_ = std::make_unique<CollisionWorld>(setup.environment, shapes);
+  const std::size_t n = colliders.size();
+  start_.resize(n);
+  engagement_.assign(n, 0);
+  solver_of_.assign(n, kStatic);
+  contacts_.resize(n);
+}
+
+std::uint64_t ContactStep::pairKey(std::size_t a, std::size_t b) const {
+  if (a > b) std::swap(a, b);
+  return static_cast<std::uint64_t>(a) * materials_.size() + b;
+}
+
+bool ContactStep::wasTouching(std::uint64_t key) const {
+  return std::binary_search(touching_.begin(), touching_.end(), key);
+}
+
+ContactPartner ContactStep::partner(std::size_t object) const {
+  return world_->isBody(object) ? ContactPartner{true, colliders_[object]}
+                                : ContactPartner{false, object - world_->bodyCount()};
+}
+
+ContactMaterial ContactStep::combined(std::size_t a, std::size_t b) const {
+  return {std::max(materials_[a].restitution, materials_[b].restitution),
+          std::sqrt(materials_[a].friction * materials_[b].friction)};
+}
+
+void ContactStep::placeAll(const std::vector<State>& states) {
+  for (std::size_t k = 0; k < colliders_.size(); ++k) {
+    world_->setPose(k, states[colliders_[k]].p_WB, states[colliders_[k]].q_WB);
+  }
+}
+
+void ContactStep::start(const std::vector<State>& states) {
+  placeAll(states);
+  world_->detect(points_, 0.0);
+  for (const ContactPoint& point : points_) {
+    if (point.distance < -settings_.penetration_slop) {
+      std::ostringstream message;
+      message << names_[point.a] << " starts inside " << names_[point.b] << " (penetration " << -point.distance
+              << " m, more than the slop of " << settings_.penetration_slop << " m): move one of them apart";
+      throw std::invalid_argument(message.str());
+    }
+  }
+  restart(states);
+}
+
+void ContactStep::restart(const std::vector<State>& states) {
+  placeAll(states);
+  world_->detect(points_, settings_.penetration_slop);
+  touching_.clear();
+  warm_.clear();
+  for (const ContactPoint& point : points_) touching_.push_back(pairKey(point.a, point.b));
+  std::sort(touching_.begin(), touching_.end());
+  touching_.erase(std::unique(touching_.begin(), touching_.end()), touching_.end());
+  for (auto& list : contacts_) list.clear();
+  impacts_.clear();
+  statistics_ = ContactStatistics();
+}
+
+void ContactStep::step(SceneBodies& bodies, const std::vector<char>& running, double h,
+                       std::vector<StepStatus>& failed) {
+  const std::size_t n = colliders_.size();
+  // 1. Free motion: every colliding body by its own integrator, as if nothing touched it.
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t body = colliders_[k];
+    start_[k] = bodies.states[body];
+    if (!running[k]) continue;
+    const StepStatus status =
+        bodies.integrators[body].step(bodies.models[body], bodies.terms[body], bodies.inputs[body], h, bodies.states[body]);
+    if (status != StepStatus::kOk) {
+      failed[k] = status;
+      bodies.states[body] = start_[k];
+    }
+  }
+  placeAll(bodies.states);
+  world_->detect(points_, settings_.penetration_slop);
+  // 2. Impacts that begin within the step, each alone on its bodies, are resolved at their time.
+  if (settings_.event_location || settings_.continuous) {
+    findCandidates(bodies, running, h);
+    bool any = false;
+    for (const Candidate& candidate : candidates_) any = resolveImpact(bodies, candidate, h) || any;
+    if (any) {
+      placeAll(bodies.states);
+      world_->detect(points_, settings_.penetration_slop);
+    }
+  }
+  // 3. The contacts at the end of the step: velocity solve, then position projection.
+  solveResting(bodies, h);
+  bool finite = true;
+  for (std::size_t k = 0; k < n; ++k) finite = finite && isFinite(bodies.states[colliders_[k]]);
+  if (!finite) {
+    for (std::size_t k = 0; k < n; ++k) {
+      bodies.states[colliders_[k]] = start_[k];
+      if (running[k]) failed[k] = StepStatus::kNonFinite;
+    }
+    ++statistics_.refused_steps;
+    touching_.clear();
+  }
+}
+
+void ContactStep::findCandidates(SceneBodies& bodies, const std::vector<char>& running, double h) {
+  candidates_.clear();
+  engaged_.clear();
+  std::fill(engagement_.begin(), engagement_.end(), 0);
+  for (const ContactPoint& point : points_) {
+    const std::uint64_t key = pairKey(point.a, point.b);
+    const bool touching = wasTouching(key);
+    if (point.distance > (touching ? settings_.penetration_slop : 0.0)) continue;
+    if (!engaged_.empty() && engaged_.back() == key) continue;  // a manifold's points come together
+    if (std::find(engaged_.begin(), engaged_.end(), key) != engaged_.end()) continue;
+    engaged_.push_back(key);
+    if (world_->isBody(point.a)) ++engagement_[point.a];
+    if (world_->isBody(point.b)) ++engagement_[point.b];
+    if (!touching && settings_.event_location) candidates_.push_back({point.a, point.b, -1.0});
+  }
+  // A body that moved farther than its inner radius allows may have passed through something thin.
+  if (settings_.continuous) {
+    for (std::size_t k = 0; k < colliders_.size(); ++k) {
+      const State& before = start_[k];
+      const State& after = bodies.states[colliders_[k]];
+      if (!running[k] || engagement_[k] != 0) continue;
+      if ((after.p_WB - before.p_WB).norm() <= kSweepFraction * inner_radius_[k]) continue;
+      const auto hit = world_->sweep(k, before.p_WB, before.q_WB, after.p_WB, after.q_WB);
+      if (!hit || hit->fraction <= 0.0 || wasTouching(pairKey(k, hit->object))) continue;
+      candidates_.push_back({k, hit->object, hit->fraction});
+      ++engagement_[k];
+      if (world_->isBody(hit->object)) ++engagement_[hit->object];
+    }
+  }
+  // Only an impact alone on its bodies is located: several at once are the solver's.
+  candidates_.erase(std::remove_if(candidates_.begin(), candidates_.end(),
+                                   [&](const Candidate& c) {
+                                     return (world_->isBody(c.a) && engagement_[c.a] != 1) ||
+                                            (world_->isBody(c.b) && engagement_[c.b] != 1);
+                                   }),
+                    candidates_.end());
+  (void)h;
+}
+
+double ContactStep::distanceAfter(SceneBodies& bodies, const Candidate& c, double tau, bool keep_states) {
+  for (std::size_t object : {c.a, c.b}) {
+    if (!world_->isBody(object)) continue;
+    const std::size_t body = colliders_[object];
+    State state = start_[object];
+    if (tau > 0.0) {
+      Integrator integrator = bodies.integrators[body];
+      integrator.step(bodies.models[body], bodies.terms[body], bodies.inputs[body], tau, state);
+    }
+    world_->setPose(object, state.p_WB, state.q_WB);
+    if (keep_states) bodies.states[body] = state;
+  }
+  return world_->pairDistance(c.a, c.b, kDistanceRange, nullptr);
+}
+
+bool ContactStep::resolveImpact(SceneBodies& bodies, const Candidate& c, double h) {
+  // Bracket the first touch: apart at the start, touching at the end (or at the swept hit).
+  double lo = 0.0, hi = h;
+  double f_lo = distanceAfter(bodies, c, 0.0, false);
+  if (!(f_lo > 0.0)) return false;  // already touching at the start: the solver's
+  double f_hi = distanceAfter(bodies, c, hi, false);
+  if (c.fraction >= 0.0 && f_hi > 0.0) {
+    // Passed through within the step: the swept hit is where it met the obstacle; look just beyond it.
+    hi = std::min(h, c.fraction * h * (1.0 + 1e-9));
+    f_hi = distanceAfter(bodies, c, hi, false);
+    if (f_hi > 0.0) {
+      lo = hi, f_lo = f_hi;
+      hi = std::min(h, hi + 0.5 * (h - hi));
+      for (int i = 0; i < 40 && f_hi > 0.0 && hi < h; ++i) {
+        lo = hi, f_lo = f_hi;
+        hi = hi + 0.5 * (h - hi);
+        f_hi = distanceAfter(bodies, c, hi, false);
+      }
+    }
+  }
+  if (f_hi > 0.0) return false;
+  // Regula falsi, Illinois variant: keeps the bracket, converges superlinearly on a smooth distance.
+  int side = 0;
+  for (int i = 0; i < kMaxRootIterations && hi - lo > settings_.event_tolerance; ++i) {
+    double tau = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+    if (!(tau > lo && tau < hi)) tau = 0.5 * (lo + hi);
+    const double f = distanceAfter(bodies, c, tau, false);
+    if (f > 0.0) {
+      lo = tau, f_lo = f;
+      if (side == -1) f_hi *= 0.5;
+      side = -1;
+    } else {
+      hi = tau, f_hi = f;
+      if (side == 1) f_lo *= 0.5;
+      side = 1;
+    }
+  }
+  // At the touch (the bracket's touching end): the points of first contact and the impact.
+  distanceAfter(bodies, c, hi, true);
+  const double deepest = world_->pairDistance(c.a, c.b, kImpactPointTolerance, &pair_points_);
+  solver_contacts_.clear();
+  solver_points_.clear();
+  solver_body_of_.clear();
+  solver_bodies_.clear();
+  for (const ContactPoint& point : pair_points_) {
+    if (point.distance <= deepest + kImpactPointTolerance) addContact(point, bodies, false);
+  }
+  if (solver_contacts_.empty()) return false;
+  SolveOptions options;
+  options.iterations = settings_.iterations;
+  options.restitution_threshold = settings_.restitution_threshold;
+  prepareContacts(solver_contacts_, solver_bodies_, options);
+  const double approach = -solver_contacts_.front().n.dot(relativeVelocity(solver_contacts_.front(), solver_bodies_));
+  solveVelocities(solver_contacts_, solver_bodies_, options);
+  // Momenta change by the impulses; the rest of the step is free motion again.
+  for (std::size_t s = 0; s < solver_bodies_.size(); ++s) {
+    const std::size_t k = solver_body_of_[s], body = colliders_[k];
+    State& state = bodies.states[body];
+    state.P_W += solver_bodies_[s].dP;
+    state.L_W += solver_bodies_[s].dL;
+    bodies.integrators[body].step(bodies.models[body], bodies.terms[body], bodies.inputs[body], h - hi, state);
+    solver_of_[k] = kStatic;
+  }
+  ++(c.fraction >= 0.0 ? statistics_.swept_impacts : statistics_.located_impacts);
+  if (impacts_.size() == kImpactLog) impacts_.erase(impacts_.begin());
+  const std::size_t body_object = world_->isBody(c.a) ? c.a : c.b;
+  impacts_.push_back({start_[body_object].t + hi, colliders_[body_object], partner(body_object == c.a ? c.b : c.a),
+                      approach});
+  return true;
+}
+
+std::size_t ContactStep::solverIndex(const SceneBodies& bodies, std::size_t object) {
+  if (!world_->isBody(object)) return kStatic;
+  if (solver_of_[object] != kStatic) return solver_of_[object];
+  const std::size_t body = colliders_[object];
+  const MassProperties& mass = bodies.models[body].mass;
+  const State& state = bodies.states[body];
+  SolverBody solver;
+  solver.inverse_mass = mass.inverseMass();
+  const Eigen::Matrix3d R = state.q_WB.toRotationMatrix();
+  solver.inverse_inertia_W = R * mass.inverseInertia() * R.transpose();
+  solver.v = state.P_W * mass.inverseMass();
+  solver.w = solver.inverse_inertia_W * state.L_W;
+  solver_of_[object] = solver_bodies_.size();
+  solver_bodies_.push_back(solver);
+  solver_body_of_.push_back(object);
+  return solver_of_[object];
+}
+
+void ContactStep::addContact(const ContactPoint& point, const SceneBodies& bodies, bool resting) {
+  SolverContact c;
+  c.a = solverIndex(bodies, point.a);
+  c.b = solverIndex(bodies, point.b);
+  if (c.a != kStatic) c.r_a = point.on_a - bodies.states[colliders_[point.a]].p_WB;
+  if (c.b != kStatic) c.r_b = point.on_b - bodies.states[colliders_[point.b]].p_WB;
+  c.n = point.normal;
+  CollisionWorld::tangentBasis(c.n, c.t1, c.t2);
+  c.separation = point.distance;
+  const ContactMaterial material = combined(point.a, point.b);
+  c.friction = material.friction;
+  // A pair that was already touching rests or slides: it does not bounce again.
+  c.restitution = resting && wasTouching(pairKey(point.a, point.b)) ? 0.0 : material.restitution;
+  if (resting && wasTouching(pairKey(point.a, point.b))) warmStart(c, point, bodies);
+  solver_contacts_.push_back(c);
+  solver_points_.push_back(&point);
+}
+
+Eigen::Vector3d ContactStep::localPoint(const ContactPoint& point, const SceneBodies& bodies) const {
+  const bool on_a = world_->isBody(point.a);
+  const State& state = bodies.states[colliders_[on_a ? point.a : point.b]];
+  return state.q_WB.conjugate() * ((on_a ? point.on_a : point.on_b) - state.p_WB);
+}
+
+void ContactStep::warmStart(SolverContact& c, const ContactPoint& point, const SceneBodies& bodies) const {
+  const WarmPoint probe{pairKey(point.a, point.b), Eigen::Vector3d::Zero(), 0.0, Eigen::Vector3d::Zero()};
+  const auto range = std::equal_range(warm_.begin(), warm_.end(), probe);
+  const Eigen::Vector3d local = localPoint(point, bodies);
+  const WarmPoint* best = nullptr;
+  double best_distance = kWarmStartMatch;
+  for (auto it = range.first; it != range.second; ++it) {
+    const double distance = (it->local - local).norm();
+    if (distance < best_distance) best = &*it, best_distance = distance;
+  }
+  if (best == nullptr) return;
+  // The pair's order may differ from last step's: impulses are stored as acting on the pair's lower object.
+  const double sign = point.a < point.b ? 1.0 : -1.0;
+  c.normal_impulse = best->normal_impulse;
+  c.friction_impulse = sign * Eigen::Vector2d(c.t1.dot(best->friction_impulse_W), c.t2.dot(best->friction_impulse_W));
+}
+
+void ContactStep::solveResting(SceneBodies& bodies, double h) {
+  solver_contacts_.clear();
+  solver_points_.clear();
+  solver_bodies_.clear();
+  solver_body_of_.clear();
+  for (const ContactPoint& point : points_) {
+    const bool touching = wasTouching(pairKey(point.a, point.b));
+    if (point.distance > (touching ? settings_.penetration_slop : 0.0)) continue;
+    statistics_.max_penetration = std::max(statistics_.max_penetration, -point.distance);
+    addContact(point, bodies, true);
+  }
+  touching_.clear();
+  for (const ContactPoint* point : solver_points_) touching_.push_back(pairKey(point->a, point->b));
+  std::sort(touching_.begin(), touching_.end());
+  touching_.erase(std::unique(touching_.begin(), touching_.end()), touching_.end());
+  if (recording_) {
+    for (auto& list : contacts_) list.clear();
+  }
+  if (solver_contacts_.empty()) {
+    warm_.clear();
+    return;
+  }
+
+  SolveOptions options;
+  options.iterations = settings_.iterations;
+  options.restitution_threshold = settings_.restitution_threshold;
+  options.dt = h;
+  prepareContacts(solver_contacts_, solver_bodies_, options);
+  solveVelocities(solver_contacts_, solver_bodies_, options);
+  // The impulses stand for a contact force constant over the step: besides the momenta they move the body
+  // by ½ h Δv (and turn it by ½ h Δω), as that force would have; then the projection.
+  for (SolverBody& s : solver_bodies_) {
+    s.dx = 0.5 * h * s.inverse_mass * s.dP;
+    s.dtheta = 0.5 * h * (s.inverse_inertia_W * s.dL);
+  }
+  projectPositions(solver_contacts_, solver_bodies_, settings_.position_iterations, settings_.penetration_slop,
+                   settings_.position_correction);
+  for (std::size_t s = 0; s < solver_bodies_.size(); ++s) {
+    const std::size_t k = solver_body_of_[s];
+    State& state = bodies.states[colliders_[k]];
+    state.P_W += solver_bodies_[s].dP;
+    state.L_W += solver_bodies_[s].dL;
+    state.p_WB += solver_bodies_[s].dx;
+    rotate(state.q_WB, solver_bodies_[s].dtheta);
+    solver_of_[k] = kStatic;
+  }
+  warm_next_.clear();
+  for (std::size_t i = 0; i < solver_contacts_.size(); ++i) {
+    const SolverContact& c = solver_contacts_[i];
+    const ContactPoint& point = *solver_points_[i];
+    const Eigen::Vector3d friction = c.friction_impulse.x() * c.t1 + c.friction_impulse.y() * c.t2;
+    warm_next_.push_back({pairKey(point.a, point.b), localPoint(point, bodies), c.normal_impulse,
+                          (point.a < point.b ? 1.0 : -1.0) * friction});
+    if (!recording_) continue;
+    const double depth = std::max(0.0, -point.distance);
+    if (world_->isBody(point.a)) {
+      contacts_[point.a].push_back({partner(point.b), point.on_a, c.n, depth, c.normal_impulse, friction});
+    }
+    if (world_->isBody(point.b)) {
+      contacts_[point.b].push_back({partner(point.a), point.on_b, -c.n, depth, c.normal_impulse, -friction});
+    }
+  }
+  std::sort(warm_next_.begin(), warm_next_.end());
+  warm_.swap(warm_next_);
+}
+
+}  // namespace contact
+}  // namespace rigid_body

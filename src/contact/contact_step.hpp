@@ -1,0 +1,109 @@
+// The contact half of a scene's step (docs/contact.md): the colliding bodies move freely by their
+// integrator, an isolated impact is located in time and resolved there, then the contacts at the end of
+// the step are solved at velocity level with a position projection for what penetration remains.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "collision_world.hpp"
+#include "contact_solver.hpp"
+#include "rigid_body_sim/contact.hpp"
+#include "rigid_body_sim/dynamics.hpp"
+#include "rigid_body_sim/integrators.hpp"
+#include "rigid_body_sim/state.hpp"
+
+namespace rigid_body {
+namespace contact {
+
+/// The scene's arrays the contact step reads and advances (indexed by scene body).
+struct SceneBodies {
+  const std::vector<Model>& models;
+  const std::vector<StepTerms>& terms;
+  std::vector<State>& states;
+  const std::vector<AppliedWrench>& inputs;
+  std::vector<Integrator>& integrators;
+};
+
+class ContactStep {
+ public:
+  /// `colliders[k]` is the scene index of the k-th colliding body; setup.bodies[that index] its shape.
+  ContactStep(const ContactSetup& setup, const std::vector<std::size_t>& colliders);
+
+  /// Throws std::invalid_argument naming both sides when a body starts inside another or the environment
+  /// deeper than the penetration slop; otherwise takes the initial touching pairs as resting.
+  void start(const std::vector<State>& states);
+
+  /// One step of h for the colliding bodies whose `running[k]` is set. A body whose free step fails keeps
+  /// its state and gets `failed[k]`; a contact result that is not finite refuses the whole step (every
+  /// colliding body keeps its state, all running ones get `failed`) and is counted.
+  void step(SceneBodies& bodies, const std::vector<char>& running, double h, std::vector<StepStatus>& failed);
+
+  /// Forgets the touching pairs, warm starts and figures (after a reset or a state set from outside).
+  void restart(const std::vector<State>& states);
+
+  const std::vector<std::size_t>& colliders() const { return colliders_; }
+  /// The contacts of colliding body k at the end of the last step (kept only while recording).
+  const std::vector<Contact>& contacts(std::size_t k) const { return contacts_[k]; }
+  void setRecording(bool recording) { recording_ = recording; }
+  const ContactStatistics& statistics() const { return statistics_; }
+  /// The last impacts located in time (at most kImpactLog of them, oldest first).
+  const std::vector<ImpactEvent>& impacts() const { return impacts_; }
+  static constexpr std::size_t kImpactLog = 64;
+
+ private:
+  struct Candidate {
+    std::size_t a, b;    // collision objects
+    double fraction;     // swept hit fraction (< 0: locate by the root of the distance)
+  };
+  std::uint64_t pairKey(std::size_t a, std::size_t b) const;
+  bool wasTouching(std::uint64_t key) const;
+  ContactPartner partner(std::size_t object) const;
+  ContactMaterial combined(std::size_t a, std::size_t b) const;
+  void placeAll(const std::vector<State>& states);
+  void findCandidates(SceneBodies& bodies, const std::vector<char>& running, double h);
+  bool resolveImpact(SceneBodies& bodies, const Candidate& candidate, double h);
+  double distanceAfter(SceneBodies& bodies, const Candidate& candidate, double tau, bool keep_states);
+  std::size_t solverIndex(const SceneBodies& bodies, std::size_t object);
+  void addContact(const ContactPoint& point, const SceneBodies& bodies, bool resting);
+  void solveResting(SceneBodies& bodies, double h);
+
+  std::unique_ptr<CollisionWorld> world_;
+  std::vector<std::size_t> colliders_;
+  std::vector<ContactMaterial> materials_;  // per collision object
+  std::vector<std::string> names_;          // per collision object, for messages
+  std::vector<double> inner_radius_;        // per colliding body
+  ContactSettings settings_;
+  bool recording_ = false;
+
+  // Per step, reused (no allocation once warm).
+  std::vector<State> start_;
+  std::vector<ContactPoint> points_, pair_points_;
+  std::vector<std::uint64_t> touching_, engaged_;
+  std::vector<int> engagement_;             // engaged pairs per colliding body
+  std::vector<Candidate> candidates_;
+  std::vector<SolverBody> solver_bodies_;
+  std::vector<std::size_t> solver_of_;      // colliding body → solver body, or kStatic
+  std::vector<std::size_t> solver_body_of_; // solver body → colliding body
+  std::vector<SolverContact> solver_contacts_;
+  std::vector<const ContactPoint*> solver_points_;
+  std::vector<std::vector<Contact>> contacts_;
+  std::vector<ImpactEvent> impacts_;
+  ContactStatistics statistics_;
+  // Warm start: last step's impulses by pair and by where the point sits on the body (its own frame).
+  struct WarmPoint {
+    std::uint64_t key;
+    Eigen::Vector3d local;
+    double normal_impulse;
+    Eigen::Vector3d friction_impulse_W;
+    bool operator<(const WarmPoint& other) const { return key < other.key; }
+  };
+  Eigen::Vector3d localPoint(const ContactPoint& point, const SceneBodies& bodies) const;
+  void warmStart(SolverContact& contact, const ContactPoint& point, const SceneBodies& bodies) const;
+  std::vector<WarmPoint> warm_, warm_next_;
+};
+
+}  // namespace contact
+}  // namespace rigid_body

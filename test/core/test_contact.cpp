@@ -1,0 +1,313 @@
+// Contact against closed forms (docs/references.md, "Contact"): a bouncing ball, a block sliding to a stop,
+// a block on an incline that sticks or slides, a sphere rolling down an incline, an elastic head-on
+// collision, a rod's impact against the impulse formula, resting boxes and a stack, a fast sphere and a thin
+// plate; and the scene without colliders unchanged.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include "rigid_body_sim/kinematics.hpp"
+#include "rigid_body_sim/scene.hpp"
+
+using namespace rigid_body;
+
+namespace {
+
+constexpr double kG = 9.81;
+constexpr double kPi = 3.14159265358979323846;
+
+CollisionShape plane(const Eigen::Vector3d& normal, double offset, double friction, double restitution = 0.0) {
+  CollisionShape shape;
+  shape.type = ShapeType::kPlane;
+  shape.name = "ground";
+  shape.normal = normal.normalized();
+  shape.offset = offset;
+  shape.material = {restitution, friction};
+  return shape;
+}
+
+CollisionShape shapeOf(ShapeType type, const Eigen::Vector3d& size, double friction, double restitution) {
+  CollisionShape shape;
+  shape.type = type;
+  shape.size = size;
+  shape.material = {restitution, friction};
+  return shape;
+}
+
+BodyDefinition body(const MassProperties& mass, const Eigen::Vector3d& p, const Eigen::Quaterniond& q,
+                    const Eigen::Vector3d& v, const Eigen::Vector3d& gravity) {
+  BodyDefinition definition;
+  definition.model.mass = mass;
+  definition.model.forces.gravity_W = gravity;
+  definition.initial = stateFromVelocities(mass, p, q, v, Eigen::Vector3d::Zero());
+  definition.takes_input = false;
+  return definition;
+}
+
+const Eigen::Vector3d kDown(0.0, 0.0, -kG);
+
+// A body on a plane through the origin tilted by theta about y (down-slope is −x' along the plane).
+struct Incline {
+  double theta;
+  Eigen::Quaterniond q() const { return Eigen::Quaterniond(Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitY())); }
+  Eigen::Vector3d normal() const { return q() * Eigen::Vector3d::UnitZ(); }
+  Eigen::Vector3d downSlope() const { return q() * Eigen::Vector3d::UnitX(); }
+};
+
+}  // namespace
+
+TEST(Contact, BouncingBallMeetsTheGroundAtSqrt2hOverGAndReboundsToE2nH) {
+  const double radius = 0.1, h0 = 1.0, e = 0.5;
+  const MassProperties ball = MassProperties::sphere(1.0, radius);
+  ContactSetup setup;
+  setup.environment = {plane(Eigen::Vector3d::UnitZ(), 0.0, 0.5)};
+  setup.bodies = {shapeOf(ShapeType::kSphere, Eigen::Vector3d(radius, 0, 0), 0.5, e)};
+  Scene scene({body(ball, Eigen::Vector3d(0, 0, radius + h0), Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero(),
+                    kDown)},
+              IntegratorType::kRk4, 1e-3, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+  std::vector<double> apexes;
+  double previous_vz = 0.0;
+  for (int i = 0; i < 4000 && apexes.size() < 5; ++i) {
+    scene.step(1);
+    const State& s = scene.state();
+    const double vz = s.P_W.z();
+    // In free flight z + v²/(2g) is the apex height of the arc the ball is on; read it as v_z turns negative.
+    if (previous_vz > 0.0 && vz <= 0.0) apexes.push_back(s.p_WB.z() - radius + vz * vz / (2.0 * kG));
+    previous_vz = vz;
+  }
+  ASSERT_EQ(apexes.size(), 5u);
+  for (std::size_t n = 1; n <= 5; ++n) {
+    const double expected = std::pow(e, 2.0 * n) * h0;
+    EXPECT_NEAR(apexes[n - 1], expected, 1e-6 * expected) << "after bounce " << n;
+  }
+  ASSERT_GE(scene.impacts().size(), 5u);
+  const double t1 = std::sqrt(2.0 * h0 / kG);
+  EXPECT_NEAR(scene.impacts()[0].time, t1, 1e-6 * t1);
+  // Bounce n + 1 follows bounce n after a flight of 2 eⁿ v₁/g.
+  const double v1 = kG * t1;
+  double expected_time = t1;
+  for (std::size_t n = 1; n < 5; ++n) {
+    expected_time += 2.0 * std::pow(e, n) * v1 / kG;
+    EXPECT_NEAR(scene.impacts()[n].time, expected_time, 1e-6 * expected_time) << "impact " << n + 1;
+  }
+}
+
+TEST(Contact, ABlockSlidingWithFrictionStopsAfterV0SquaredOver2MuG) {
+  const double mu = 0.4, v0 = 2.0;
+  const Eigen::Vector3d size(0.2, 0.2, 0.1);
+  ContactSetup setup;
+  setup.environment = {plane(Eigen::Vector3d::UnitZ(), 0.0, mu)};
+  setup.bodies = {shapeOf(ShapeType::kBox, size, mu, 0.0)};
+  Scene scene({body(MassProperties::box(2.0, size), Eigen::Vector3d(0, 0, 0.05), Eigen::Quaterniond::Identity(),
+                    Eigen::Vector3d(v0, 0, 0), kDown)},
+              IntegratorType::kRk4, 1e-3, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+  const double stop_time = v0 / (mu * kG), stop_distance = v0 * v0 / (2.0 * mu * kG);
+  double stopped_at = -1.0;
+  for (int i = 1; i <= 2000; ++i) {
+    scene.step(1);
+    if (stopped_at < 0.0 && scene.state().P_W.x() <= 1e-9) stopped_at = i * 1e-3;
+  }
+  EXPECT_NEAR(stopped_at, stop_time, 5e-3 * stop_time);
+  EXPECT_NEAR(scene.state().p_WB.x(), stop_distance, 5e-3 * stop_distance);
+  EXPECT_NEAR(scene.state().p_WB.z(), 0.05, 1e-3);  // on the ground, neither sunk nor lifted
+}
+
+TEST(Contact, ABlockOnAnInclineSticksBelowTheFrictionAngleAndSlidesAboveIt) {
+  const Incline incline{20.0 * kPi / 180.0};
+  const Eigen::Vector3d size(0.2, 0.2, 0.1);
+  for (double mu : {0.5, 0.2}) {
+    ContactSetup setup;
+    setup.environment = {plane(incline.normal(), 0.0, mu)};
+    setup.bodies = {shapeOf(ShapeType::kBox, size, mu, 0.0)};
+    const Eigen::Vector3d start = 0.05 * incline.normal();
+    Scene scene({body(MassProperties::box(1.0, size), start, incline.q(), Eigen::Vector3d::Zero(), kDown)},
+                IntegratorType::kRk4, 1e-3, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+    const double duration = mu > std::tan(incline.theta) ? 5.0 : 1.0;
+    scene.step(static_cast<std::int64_t>(std::llround(duration / 1e-3)));
+    const double travelled = (scene.state().p_WB - start).dot(incline.downSlope());
+    if (mu > std::tan(incline.theta)) {
+      EXPECT_LT((scene.state().p_WB - start).norm(), 1e-3) << "mu " << mu << ": it should stick";
+    } else {
+      const double a = kG * (std::sin(incline.theta) - mu * std::cos(incline.theta));
+      EXPECT_NEAR(travelled, 0.5 * a * duration * duration, 0.01 * 0.5 * a * duration * duration) << "mu " << mu;
+    }
+  }
+}
+
+TEST(Contact, ASphereRollsDownAnInclineWithoutSlippingAtFiveSeventhsGSinTheta) {
+  const Incline incline{25.0 * kPi / 180.0};
+  const double radius = 0.1, mu = 0.6;
+  ContactSetup setup;
+  setup.environment = {plane(incline.normal(), 0.0, mu)};
+  setup.bodies = {shapeOf(ShapeType::kSphere, Eigen::Vector3d(radius, 0, 0), mu, 0.0)};
+  const Eigen::Vector3d start = radius * incline.normal();
+  Scene scene({body(MassProperties::sphere(1.0, radius), start, Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero(),
+                    kDown)},
+              IntegratorType::kRk4, 1e-3, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+  scene.step(1000);
+  const double a = 5.0 / 7.0 * kG * std::sin(incline.theta);
+  const double travelled = (scene.state().p_WB - start).dot(incline.downSlope());
+  EXPECT_NEAR(travelled, 0.5 * a, 0.01 * 0.5 * a);  // a sliding sphere would travel 7/5 as far
+  // Rolling: the contact point is at rest, v = ω × (r n).
+  const Eigen::Vector3d v = linearVelocity(scene.model().mass, scene.state());
+  const Eigen::Vector3d w = angularVelocity(scene.model().mass, scene.state());
+  EXPECT_LT((v + w.cross(-radius * incline.normal())).norm(), 1e-6 * v.norm());
+}
+
+TEST(Contact, EqualSpheresHeadOnWithRestitutionOneExchangeVelocities) {
+  const double radius = 0.1;
+  const MassProperties ball = MassProperties::sphere(1.0, radius);
+  ContactSetup setup;
+  setup.bodies = {shapeOf(ShapeType::kSphere, Eigen::Vector3d(radius, 0, 0), 0.0, 1.0),
+                  shapeOf(ShapeType::kSphere, Eigen::Vector3d(radius, 0, 0), 0.0, 1.0)};
+  const Eigen::Vector3d va(1.5, 0, 0), vb(-0.5, 0, 0);
+  Scene scene({body(ball, Eigen::Vector3d(-0.5, 0, 0), Eigen::Quaterniond::Identity(), va, Eigen::Vector3d::Zero()),
+               body(ball, Eigen::Vector3d(0.5, 0, 0), Eigen::Quaterniond::Identity(), vb, Eigen::Vector3d::Zero())},
+              IntegratorType::kRk4, 1e-3, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+  const double energy = kineticEnergy(ball, scene.state(0)) + kineticEnergy(ball, scene.state(1));
+  const Eigen::Vector3d momentum = scene.state(0).P_W + scene.state(1).P_W;
+  scene.step(1000);
+  ASSERT_EQ(scene.impacts().size(), 1u);
+  EXPECT_NEAR(scene.impacts()[0].time, 0.8 / 2.0, 1e-9);  // the gap of 0.8 m closes at 2 m/s
+  EXPECT_LT((scene.state(0).P_W - vb).norm(), 1e-9);
+  EXPECT_LT((scene.state(1).P_W - va).norm(), 1e-9);
+  EXPECT_LT((scene.state(0).P_W + scene.state(1).P_W - momentum).norm(), 1e-9);
+  EXPECT_NEAR(kineticEnergy(ball, scene.state(0)) + kineticEnergy(ball, scene.state(1)), energy, 1e-9 * energy);
+}
+
+TEST(Contact, ATiltedRodLandsWithTheImpulseOfTheFormula) {
+  // A capsule rod (radius r, straight part l along its z axis) tilted by 30° about y, dropped from rest: it
+  // meets the ground with its lower end's hemisphere, at one point.
+  const double r = 0.02, l = 1.0, m = 2.0, e = 0.5, tilt = 30.0 * kPi / 180.0, drop = 0.2;
+  const MassProperties rod = MassProperties::cylinder(m, r, l + 2.0 * r);
+  const Eigen::Quaterniond q(Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitY()));
+  const Eigen::Vector3d axis = q * Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d centre(0.0, 0.0, 0.5 * l * axis.z() + r + drop);
+  ContactSetup setup;
+  setup.environment = {plane(Eigen::Vector3d::UnitZ(), 0.0, 0.0)};
+  setup.bodies = {shapeOf(ShapeType::kCapsule, Eigen::Vector3d(r, l, 0), 0.0, e)};
+  Scene scene({body(rod, centre, q, Eigen::Vector3d::Zero(), kDown)}, IntegratorType::kRk4, 1e-3,
+              IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+  const double impact_time = std::sqrt(2.0 * drop / kG);
+  const std::int64_t impact_step = static_cast<std::int64_t>(std::ceil(impact_time / 1e-3));
+  scene.step(impact_step);
+  ASSERT_EQ(scene.impacts().size(), 1u);
+  EXPECT_NEAR(scene.impacts()[0].time, impact_time, 1e-9);
+  // Baraff & Witkin's impulse: j = −(1+e) v⁻·n / (1/M + n·(I⁻¹(r×n))×r), then Δv = j n/M, ΔL = r × j n.
+  const Eigen::Vector3d n = Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d lever = -0.5 * l * axis - r * n;  // lowest point of the lower hemisphere
+  const Eigen::Matrix3d R = q.toRotationMatrix();
+  const Eigen::Matrix3d I_inv = R * rod.inverseInertia() * R.transpose();
+  const Eigen::Vector3d v_minus(0.0, 0.0, -kG * impact_time);
+  const double j = -(1.0 + e) * v_minus.dot(n) / (1.0 / m + n.dot((I_inv * lever.cross(n)).cross(lever)));
+  // After the impact, free flight for the rest of the step: v grows by g Δt; L about the centre is constant.
+  const double rest = impact_step * 1e-3 - impact_time;
+  const Eigen::Vector3d P_expected = m * (v_minus + j * n / m) + m * kDown * rest;
+  const Eigen::Vector3d L_expected = lever.cross(j * n);
+  EXPECT_LT((scene.state().P_W - P_expected).norm(), 1e-9 * P_expected.norm());
+  EXPECT_LT((scene.state().L_W - L_expected).norm(), 1e-9 * L_expected.norm());
+}
+
+TEST(Contact, ABoxRestsOnTheGroundWithoutSinkingDriftingOrGainingEnergy) {
+  const Eigen::Vector3d size(0.4, 0.2, 0.1);
+  const MassProperties box = MassProperties::box(1.0, size);
+  ContactSetup setup;
+  setup.environment = {plane(Eigen::Vector3d::UnitZ(), 0.0, 0.5)};
+  setup.bodies = {shapeOf(ShapeType::kBox, size, 0.5, 0.0)};
+  const Eigen::Vector3d start(0.3, -0.2, 0.05);
+  Scene scene({body(box, start, Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero(), kDown)}, IntegratorType::kRk4,
+              1e-3, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+  const double energy = potentialEnergy(box, scene.model().forces, scene.state());
+  scene.setRecordContacts(true);
+  scene.step(10000);
+  EXPECT_EQ(scene.contacts(0).size(), 4u);  // its four bottom corners
+  EXPECT_LE(scene.contactStatistics().max_penetration, 1e-3);
+  EXPECT_LT((scene.state().p_WB - start).head<2>().norm(), 1e-6);
+  EXPECT_NEAR(scene.state().p_WB.z(), 0.05, 1e-3);
+  EXPECT_LT(Eigen::AngleAxisd(scene.state().q_WB).angle(), 1e-6);
+  EXPECT_LE(kineticEnergy(box, scene.state()) + potentialEnergy(box, scene.model().forces, scene.state()),
+            energy + 1e-6);
+  for (const Contact& contact : scene.contacts(0)) {
+    EXPECT_FALSE(contact.other.is_body);
+    EXPECT_LT((contact.normal_W - Eigen::Vector3d::UnitZ()).norm(), 1e-9);
+  }
+}
+
+TEST(Contact, AStackOfTenBoxesStandsForTenSeconds) {
+  const Eigen::Vector3d size(0.3, 0.3, 0.2);
+  ContactSetup setup;
+  setup.environment = {plane(Eigen::Vector3d::UnitZ(), 0.0, 0.5)};
+  std::vector<BodyDefinition> boxes;
+  for (int i = 0; i < 10; ++i) {
+    boxes.push_back(body(MassProperties::box(1.0, size), Eigen::Vector3d(0, 0, 0.1 + 0.2 * i),
+                         Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero(), kDown));
+    setup.bodies.push_back(shapeOf(ShapeType::kBox, size, 0.5, 0.0));
+  }
+  Scene scene(boxes, IntegratorType::kRk4, 1e-3, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+  scene.step(10000);
+  for (std::size_t i = 0; i < 10; ++i) {
+    EXPECT_LT((scene.state(i).p_WB - scene.initialState(i).p_WB).norm(), 2e-3) << "box " << i;
+  }
+  EXPECT_LE(scene.contactStatistics().max_penetration, 1e-3);
+}
+
+TEST(Contact, AFastSphereDoesNotTunnelThroughAThinPlate) {
+  const double radius = 0.05;
+  CollisionShape plate = shapeOf(ShapeType::kBox, Eigen::Vector3d(1.0, 1.0, 0.01), 0.5, 0.0);
+  plate.name = "plate";
+  ContactSetup setup;
+  setup.environment = {plate};
+  setup.bodies = {shapeOf(ShapeType::kSphere, Eigen::Vector3d(radius, 0, 0), 0.5, 0.0)};
+  Scene scene({body(MassProperties::sphere(0.5, radius), Eigen::Vector3d(0, 0, 1.0), Eigen::Quaterniond::Identity(),
+                    Eigen::Vector3d(0, 0, -100.0), kDown)},
+              IntegratorType::kRk4, 1e-3, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+  scene.step(200);
+  EXPECT_GT(scene.state().p_WB.z(), 0.005 + radius - 1e-3);  // on the plate's top face, not below it
+  EXPECT_LT(scene.state().P_W.norm(), 0.5 * 0.1);             // and stopped there
+  EXPECT_GE(scene.contactStatistics().swept_impacts + scene.contactStatistics().located_impacts, 1);
+}
+
+TEST(Contact, ABodyStartingInsideAnotherIsRefusedNamingBoth) {
+  ContactSetup setup;
+  setup.environment = {plane(Eigen::Vector3d::UnitZ(), 0.0, 0.5)};
+  CollisionShape crate = shapeOf(ShapeType::kBox, Eigen::Vector3d(0.2, 0.2, 0.2), 0.5, 0.0);
+  crate.name = "crate";
+  setup.bodies = {crate};
+  try {
+    Scene scene({body(MassProperties::box(1.0, Eigen::Vector3d(0.2, 0.2, 0.2)), Eigen::Vector3d(0, 0, 0.05),
+                      Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero(), kDown)},
+                IntegratorType::kRk4, 1e-3, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+    FAIL() << "a crate half in the ground was accepted";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("crate"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("ground"), std::string::npos) << error.what();
+  }
+}
+
+TEST(Contact, ABodyWithoutCollisionStepsExactlyAsInAScenewithoutContact) {
+  const MassProperties box = MassProperties::box(1.0, Eigen::Vector3d(0.4, 0.2, 0.1));
+  BodyDefinition free = body(box, Eigen::Vector3d(0, 0, 1), Eigen::Quaterniond::Identity(), Eigen::Vector3d(1, 0, 0), kDown);
+  free.initial.L_W = Eigen::Vector3d(0.01, 0.2, 0.01);
+  BodyDefinition ball = body(MassProperties::sphere(1.0, 0.1), Eigen::Vector3d(3, 0, 0.5), Eigen::Quaterniond::Identity(),
+                             Eigen::Vector3d::Zero(), kDown);
+  ContactSetup setup;
+  setup.environment = {plane(Eigen::Vector3d::UnitZ(), 0.0, 0.5)};
+  setup.bodies = {std::nullopt, shapeOf(ShapeType::kSphere, Eigen::Vector3d(0.1, 0, 0), 0.5, 0.0)};
+  Scene with_contact({free, ball}, IntegratorType::kRk4, 1e-3, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+  Scene without({free}, IntegratorType::kRk4, 1e-3);
+  EXPECT_FALSE(without.hasContact());
+  EXPECT_TRUE(with_contact.hasContact());
+  EXPECT_FALSE(with_contact.collides(0));
+  for (int i = 0; i < 2000; ++i) {
+    with_contact.step(1);
+    without.step(1);
+  }
+  // Bit for bit: the body without a shape never enters the contact step (it falls through the ground).
+  EXPECT_EQ(with_contact.state(0).p_WB, without.state(0).p_WB);
+  EXPECT_EQ(with_contact.state(0).q_WB.coeffs(), without.state(0).q_WB.coeffs());
+  EXPECT_EQ(with_contact.state(0).L_W, without.state(0).L_W);
+  EXPECT_LT(with_contact.state(0).p_WB.z(), -5.0);
+  EXPECT_NEAR(with_contact.state(1).p_WB.z(), 0.1, 1e-3);  // the ball with a shape lands and stays
+}
