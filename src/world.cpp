@@ -48,8 +48,9 @@ std::int64_t wholeStepsIn(double elapsed, double dt) {
 }
 
 World::World(const std::vector<BodyDefinition>& bodies, IntegratorType integrator,
-             const IntegratorSettings& integrator_settings, const WorldSettings& settings, StepAssembly assembly)
-    : settings_(settings), scene_(bodies, integrator, settings.dt, integrator_settings, assembly) {
+             const IntegratorSettings& integrator_settings, const WorldSettings& settings, StepAssembly assembly,
+             const ContactSetup& contact)
+    : settings_(settings), scene_(bodies, integrator, settings.dt, integrator_settings, assembly, contact) {
   if (!(settings.dt >= 1e-9) || !std::isfinite(settings.dt)) {
     throw std::invalid_argument("dt must be a finite number >= 1e-9 [s] (the clock counts nanoseconds)");
   }

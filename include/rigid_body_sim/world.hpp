@@ -90,7 +90,7 @@ class World {
   /// Throws std::invalid_argument for settings out of range (dt, caps) or a bad scene.
   World(const std::vector<BodyDefinition>& bodies, IntegratorType integrator,
         const IntegratorSettings& integrator_settings, const WorldSettings& settings,
-        StepAssembly assembly = StepAssembly::kLeaveOut);
+        StepAssembly assembly = StepAssembly::kLeaveOut, const ContactSetup& contact = ContactSetup());
 
   /// Anchors simulated time 0 (step 0) at `start` on the caller's clock.
   void start(Nanoseconds start);
@@ -130,6 +130,8 @@ class World {
 
   // ----- queries -----
   const Scene& scene() const { return scene_; }
+  /// Keeps each colliding body's contacts of the last step for its outputs (Scene::setRecordContacts).
+  void setRecordContacts(bool record) { scene_.setRecordContacts(record); }
   std::size_t bodyCount() const { return scene_.bodyCount(); }
   double dt() const { return settings_.dt; }
   bool paused() const { return paused_; }

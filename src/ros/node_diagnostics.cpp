@@ -1,5 +1,7 @@
 #include "rigid_body_sim/ros/node_diagnostics.hpp"
 
+#include <sstream>
+
 #include <string>
 
 #include "rigid_body_sim/kinematics.hpp"
@@ -114,9 +116,29 @@ void NodeDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat
   addBodies(status);
 }
 
+std::string describeBodyStep(const rigid_body::Scene& scene, std::size_t body, const NodeConfig& config) {
+  std::string line = rigid_body::describeTerms(scene.terms(body));
+  if (!scene.collides(body)) return line;
+  const rigid_body::ContactMaterial& material = config.bodies[body].collision->material;
+  std::ostringstream contact;
+  contact << ", contact (" << rigid_body::shapeTypeName(config.bodies[body].collision->type) << ", restitution "
+          << material.restitution << ", friction " << material.friction << ")";
+  return line + contact.str();
+}
+
 void NodeDiagnostics::addBodies(diagnostic_updater::DiagnosticStatusWrapper& status) const {
   const rigid_body::Scene& scene = world_.scene();
   const std::size_t bodies = scene.bodyCount();
+  if (scene.hasContact()) {
+    const rigid_body::ContactStatistics contact = scene.contactStatistics();
+    std::size_t points = 0;
+    for (std::size_t body = 0; body < bodies; ++body) points += scene.contactCount(body);
+    status.add("contact points", points);
+    status.add("max penetration since reset [m]", contact.max_penetration);
+    status.add("impacts located in time", contact.located_impacts);
+    status.add("impacts found by the swept test", contact.swept_impacts);
+    status.add("contact steps refused (non-finite)", contact.refused_steps);
+  }
   // Drift per body, keyed by the body frame when the scene has several.
   for (std::size_t body = 0; body < bodies; ++body) {
     const rigid_body::Model& model = scene.model(body);
@@ -127,7 +149,7 @@ void NodeDiagnostics::addBodies(diagnostic_updater::DiagnosticStatusWrapper& sta
     const rigid_body::State& initial = scene.initialState(body);
     const std::string prefix = bodies == 1 ? "" : config_.bodies[body].body_frame + ": ";
     if (bodies > 1) status.add(prefix + "divergence", rigid_body::divergenceName(scene.divergence(body)));
-    status.add(prefix + "step terms", rigid_body::describeTerms(scene.terms(body)));
+    status.add(prefix + "step terms", describeBodyStep(scene, body, config_));
     status.add(prefix + "energy change since reset [J]", energy(state) - energy(initial));
     status.add(prefix + "|L| change since reset [kg m^2/s]", state.L_W.norm() - initial.L_W.norm());
     status.add(prefix + "max ||q| - 1| since reset", outputs_.maxNormError(body));

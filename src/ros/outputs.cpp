@@ -84,6 +84,11 @@ void Outputs::advertise(ros::NodeHandle& nh, std::size_t body, uint32_t queue) {
     channel.applied_wrench =
         advertise(geometry_msgs::WrenchStamped(), "applied_wrench", &Channel::applied_wrench_subscribers);
   }
+  if (config.collision) {
+    channel.contacts_message.header.frame_id = config_.world_frame;
+    channel.contacts_message.body_frame = config.body_frame;
+    channel.contacts = advertise(rigid_body_sim::Contacts(), "contacts", &Channel::contacts_subscribers);
+  }
   if (config_.noise.enabled()) {
     channel.noise = std::make_unique<OdometryNoise>(nh, config.topic("odom_noisy"), queue, config_.noise,
                                                     config_.rate, body);  // one stream per body
@@ -142,8 +147,29 @@ void Outputs::publishArray(const rigid_body::World& world, const ros::Time& stam
   array_publisher_.publish(array_message_);
 }
 
+void Outputs::publishContacts(const rigid_body::World& world, std::size_t body, const ros::Time& stamp) {
+  Channel& channel = channels_[body];
+  rigid_body_sim::Contacts& message = channel.contacts_message;
+  message.header.stamp = stamp;
+  const std::vector<rigid_body::Contact>& contacts = world.scene().contacts(body);
+  message.contacts.resize(contacts.size());
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const rigid_body::Contact& contact = contacts[i];
+    rigid_body_sim::Contact& out = message.contacts[i];
+    out.other = contact.other.is_body ? config_.bodies[contact.other.index].body_frame
+                                      : config_.environment[contact.other.index].name;
+    out.position = tf2::toMsg(contact.position_W);
+    tf2::toMsg(contact.normal_W, out.normal);
+    out.penetration = contact.penetration;
+    out.normal_impulse = contact.normal_impulse;
+    tf2::toMsg(contact.friction_impulse_W, out.friction_impulse);
+  }
+  channel.contacts.publish(message);
+}
+
 void Outputs::publishBody(const rigid_body::World& world, std::size_t body, const ros::Time& stamp) {
   Channel& channel = channels_[body];
+  if (channel.contacts_subscribers > 0) publishContacts(world, body, stamp);
   const rigid_body::Scene& scene = world.scene();
   const rigid_body::State& state = scene.state(body);  // finite: the scene keeps the last good state
   channel.max_norm_error = std::max(channel.max_norm_error, std::abs(rigid_body::quaternionNormError(state)));
@@ -168,6 +194,7 @@ void Outputs::publishBody(const rigid_body::World& world, std::size_t body, cons
   if (channel.state_subscribers > 0 || applied_wrench) {
     channel.state_message.header.stamp = stamp;
     fillStateMessage(scene.model(body), state, scene.input(body), channel.state_message);
+    channel.state_message.contacts = static_cast<std::uint32_t>(scene.contactCount(body));
     if (!finite(channel.state_message)) {
       ++withheld_;
       ROS_WARN_THROTTLE(kWarningPeriod, "rigid_body_node: %s: state withheld: a non-finite field (energy overflow?)",

@@ -19,6 +19,7 @@
 #include "rigid_body_sim/mesh_io.hpp"
 #include "rigid_body_sim/mesh_mass_properties.hpp"
 #include "rigid_body_sim/number_format.hpp"
+#include "rigid_body_sim/ros/contact_parameters.hpp"
 
 namespace rigid_body_ros {
 
@@ -45,12 +46,12 @@ constexpr double kQuaternionNormTolerance = 1e-3;
 const std::set<std::string> kBodyNames = {
     "name", "body_frame", "mass", "shape", "size", "inertia", "initial", "linear_damping", "angular_damping",
     "mesh", "scale", "density", "inertia_method", "samples", "principal_axes", "mesh_frame", "wrench_input",
-    "max_mesh_bytes"};
+    "max_mesh_bytes", "collision"};
 const std::set<std::string> kSceneNames = {
     "rate", "dt", "integrator", "world_frame", "gravity", "bodies", "wrench_timeout", "max_substeps",
     "max_body_steps_per_tick", "max_body_steps_per_request", "publish_tf",
     "publish", "abs_tolerance", "rel_tolerance", "max_force", "max_torque", "max_energy_growth", "lockstep",
-    "real_time_factor", "start_paused", "noise"};
+    "real_time_factor", "start_paused", "noise", "environment", "contact"};
 const std::set<std::string> kPublishNames = {"tf", "odom", "state", "applied_wrench", "body_services",
                                              "per_body_topics"};
 const std::set<std::string> kNoiseNames = {"position_stddev", "orientation_stddev", "linear_velocity_stddev",
@@ -93,9 +94,8 @@ rigid_body::MassProperties readMeshMassProperties(const XmlRpcValue& params, Bod
                  "must be a number of bytes in [1, 4e9] (the largest mesh file read)"));
   const bool principal_axes = readBool(params, "principal_axes", false);
   try {
-    const rigid_body::MeshMassProperties properties =
-        rigid_body::meshMassProperties(rigid_body::transformed(rigid_body::loadMesh(config.mesh_path, max_bytes), scale),
-                                       options);
+    config.mesh = rigid_body::transformed(rigid_body::loadMesh(config.mesh_path, max_bytes), scale);
+    const rigid_body::MeshMassProperties properties = rigid_body::meshMassProperties(config.mesh, options);
     config.mesh_warnings = properties.warnings;
     const rigid_body::MeshBody body = rigid_body::meshBody(properties, principal_axes);
     config.X_MB = body.X_MB;
@@ -205,6 +205,8 @@ BodyConfig parseBody(const XmlRpcValue& params, const NodeConfig& scene, const s
     body.mesh_frame = readFrame(params, "mesh_frame", "");
   }
   if (const XmlRpcValue* initial = find(params, "initial")) collectUnknown(*initial, "initial/", kInitialNames, unknown);
+  body.collision = readCollision(params, body);
+  if (body.collision) body.collision->name = body.body_frame;
   return body;
 }
 
@@ -258,6 +260,7 @@ std::vector<BodyConfig> parseBodies(const XmlRpcValue& params, const NodeConfig&
       }
       BodyConfig body = parseBody(item, scene, name, unknown);
       body.name = name;
+      if (body.collision) body.collision->name = name;
       if (!frames.insert(body.body_frame).second) {
         fail("body_frame", XmlRpcValue(body.body_frame), "must differ from every other body's body_frame");
       }
@@ -365,6 +368,11 @@ std::vector<std::string> unknownNames(const XmlRpcValue& params, const std::vect
   collectUnknown(params, "", top_level, unknown);
   if (const XmlRpcValue* noise = find(params, "noise")) collectUnknown(*noise, "noise/", kNoiseNames, unknown);
   if (const XmlRpcValue* publish = find(params, "publish")) collectUnknown(*publish, "publish/", kPublishNames, unknown);
+  if (const XmlRpcValue* contact = find(params, "contact")) {
+    std::set<std::string> known;
+    for (const char* const* key = kContactKeys; *key != nullptr; ++key) known.insert(*key);
+    collectUnknown(*contact, "contact/", known, unknown);
+  }
   unknown.insert(unknown.end(), unknown_in_bodies.begin(), unknown_in_bodies.end());
   return unknown;
 }
@@ -387,6 +395,8 @@ NodeConfig parseConfig(const XmlRpcValue& params) {
   readLimits(params, config);
   readOutputs(params, config);
   config.noise = readNoise(params);
+  config.environment = readEnvironment(params, rigid_body::kDefaultMaxMeshBytes);
+  config.contact = readContactSettings(params);
   config.unknown_parameters = unknownNames(params, unknown_in_bodies);
   return config;
 }
@@ -407,6 +417,14 @@ NodeConfig loadConfig(const ros::NodeHandle& private_nh) {
   XmlRpcValue params;
   if (!ros::param::get(private_nh.getNamespace(), params)) params = XmlRpcValue();
   return parseConfig(params);
+}
+
+rigid_body::ContactSetup NodeConfig::contactSetup() const {
+  rigid_body::ContactSetup setup;
+  setup.environment = environment;
+  setup.settings = contact;
+  for (const BodyConfig& body : bodies) setup.bodies.push_back(body.collision);
+  return setup;
 }
 
 std::string NodeConfig::describe() const {
@@ -432,6 +450,14 @@ std::string NodeConfig::describe() const {
         << I.y() << ", " << I.z() << "] kg m^2, damping " << body.model.forces.linear_damping << " N s/m, "
         << body.model.forces.angular_damping << " N m s/rad, wrench input "
         << (body.wrench_input ? "true" : "false");
+    if (body.collision) {
+      out << ", collision " << rigid_body::shapeTypeName(body.collision->type) << " (restitution "
+          << body.collision->material.restitution << ", friction " << body.collision->material.friction << ")";
+    }
+  }
+  for (const rigid_body::CollisionShape& shape : environment) {
+    out << "\n  environment '" << shape.name << "': " << rigid_body::shapeTypeName(shape.type) << " (restitution "
+        << shape.material.restitution << ", friction " << shape.material.friction << ")";
   }
   return out.str();
 }

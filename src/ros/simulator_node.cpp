@@ -47,7 +47,8 @@ SimulatorNode::SimulatorNode(const ros::NodeHandle& nh, const ros::NodeHandle& p
     : config_(config),
       nh_(nh),
       private_nh_(private_nh),
-      world_(bodyDefinitions(config_), config_.integrator, config_.integrator_settings, worldSettings(config_)),
+      world_(bodyDefinitions(config_), config_.integrator, config_.integrator_settings, worldSettings(config_),
+             rigid_body::StepAssembly::kLeaveOut, config_.contactSetup()),
       wrench_input_(nh_, config_, world_, [this] { return now(); }),
       outputs_(nh_, config_),
       diagnostics_(nh_, private_nh_, config_, world_, wrench_input_, outputs_),
@@ -73,12 +74,14 @@ rigid_body::Nanoseconds SimulatorNode::now() const {
 
 void SimulatorNode::start(const ros::Time& start_time) {
   world_.start(toNanoseconds(start_time));
+  // A colliding body's contacts are kept for its state (their count) and its contacts topic.
+  world_.setRecordContacts(true);
   ROS_INFO("rigid_body_node: %s", config_.describe().c_str());
   for (std::size_t body = 0; body < config_.bodies.size(); ++body) {
     const BodyConfig& config = config_.bodies[body];
     // Once, at start-up: what this body's step evaluates (the rest of Ẏ is left out: see StepTerms).
     ROS_INFO("rigid_body_node: body %s (%s): step assembled from %s", config.name.empty() ? "(flat)" : config.name.c_str(),
-             config.body_frame.c_str(), rigid_body::describeTerms(world_.scene().terms(body)).c_str());
+             config.body_frame.c_str(), describeBodyStep(world_.scene(), body, config_).c_str());
     if (config.mesh_path.empty()) continue;
     const Eigen::Vector3d& c = config.X_MB.translation();
     const Eigen::Quaterniond q_MB(config.X_MB.linear());

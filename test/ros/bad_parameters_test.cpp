@@ -90,6 +90,11 @@ INSTANTIATE_TEST_SUITE_P(
                            "more than the limit of 1000"},
                       Case{"mesh_bad_index", "_shape:=mesh _mass:=1.0 _mesh:=/tmp/rigid_body_sim_bad_index.obj",
                            "names no vertex"},
+                      // Contact: a material out of range stops the node like any other parameter.
+                      Case{"restitution", "_collision/restitution:=1.5",
+                           "parameter ~collision/restitution = 1.5: must be a number in [0, 1]"},
+                      Case{"friction", "_collision/friction:=-0.1", "parameter ~collision/friction = -0.10000000000000001"},
+                      Case{"contact_iterations", "_contact/iterations:=0", "parameter ~contact/iterations = 0"},
                       Case{"samples_huge", "_shape:=mesh _mass:=1.0 _mesh:=" TEST_MESH_DIR "/box.obj _inertia_method:=sampling _samples:=2147483647",
                            "parameter ~samples = 2147483647: must be an integer in [1, 10000000]"}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });

@@ -16,6 +16,10 @@
 
 namespace rigid_body_ros {
 
+/// "translation, rotation, gravity, contact (restitution 0.5, friction 0.5)": a body's assembled step, with
+/// the contact term only for a body that collides.
+std::string describeBodyStep(const rigid_body::Scene& scene, std::size_t body, const NodeConfig& config);
+
 class NodeDiagnostics {
  public:
   NodeDiagnostics(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const NodeConfig& config,

@@ -16,6 +16,7 @@
 #include <memory>
 #include <vector>
 
+#include "rigid_body_sim/Contacts.h"
 #include "rigid_body_sim/OdometryArray.h"
 #include "rigid_body_sim/RigidBodyState.h"
 #include "rigid_body_sim/ros/odometry_noise.hpp"
@@ -45,7 +46,9 @@ class Outputs {
     ros::Publisher odom;
     ros::Publisher state;
     ros::Publisher applied_wrench;
+    ros::Publisher contacts;               ///< only for a body with a collision shape
     std::unique_ptr<OdometryNoise> noise;  ///< only with noise
+    int contacts_subscribers = 0;
     int odom_subscribers = 0;
     int state_subscribers = 0;
     int applied_wrench_subscribers = 0;
@@ -53,7 +56,9 @@ class Outputs {
     nav_msgs::Odometry odom_message;
     rigid_body_sim::RigidBodyState state_message;
     geometry_msgs::WrenchStamped applied_wrench_message;
+    rigid_body_sim::Contacts contacts_message;
   };
+  void publishContacts(const rigid_body::World& world, std::size_t body, const ros::Time& stamp);
 
   void advertise(ros::NodeHandle& nh, std::size_t body, uint32_t queue);
   /// bodies/odom: every body's odometry in one message (publish/per_body_topics: false).

@@ -5,10 +5,13 @@
 #include <xmlrpcpp/XmlRpcValue.h>
 
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "rigid_body_sim/collision_shape.hpp"
+#include "rigid_body_sim/contact.hpp"
 #include "rigid_body_sim/dynamics.hpp"
 #include "rigid_body_sim/integrators.hpp"
 #include "rigid_body_sim/state.hpp"
@@ -57,6 +60,9 @@ struct BodyConfig {
   std::string mesh_frame;            ///< if set, a static tf body_frame → mesh_frame is published
   Eigen::Isometry3d X_MB = Eigen::Isometry3d::Identity();  ///< pose of the body frame in the mesh frame
   std::vector<std::string> mesh_warnings;  ///< repairs made to the mesh, for the start-up log
+  rigid_body::TriangleMesh mesh;           ///< the mesh as read and scaled, in its own frame M
+  /// `collision`: the body's collision shape in the body frame, or none (it collides with nothing)
+  std::optional<rigid_body::CollisionShape> collision;
 
   /// NAME/ + `topic`, or `topic` alone in the flat form.
   std::string topic(const std::string& topic) const { return name.empty() ? topic : name + "/" + topic; }
@@ -98,6 +104,10 @@ struct NodeConfig {
   double real_time_factor = 1.0;  ///< lockstep pace: simulated seconds per wall second; 0 = as fast as possible
   bool start_paused = false;      ///< start paused (pause/unpause/step services)
   NoiseConfig noise;              ///< every body's odom_noisy (each body draws from its own generator)
+  std::vector<rigid_body::CollisionShape> environment;  ///< ~environment: static shapes
+  rigid_body::ContactSettings contact;                  ///< ~contact/: the solver's settings
+  /// The core's contact description: the environment and each body's collision shape.
+  rigid_body::ContactSetup contactSetup() const;
   std::vector<std::string> unknown_parameters;  ///< names set but not known (typos), for a warning
 
   /// One line with the effective scene-wide values, and one per body, for the start-up log.

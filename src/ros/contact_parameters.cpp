@@ -1,0 +1,234 @@
+#include "rigid_body_sim/ros/contact_parameters.hpp"
+
+#include "parameter_values.hpp"
+
+#include <cmath>
+#include <set>
+
+#include "rigid_body_sim/mesh_io.hpp"
+#include "rigid_body_sim/ros/parameters.hpp"
+
+namespace rigid_body_ros {
+
+using namespace parameter_values;
+
+const char* const kContactKeys[] = {"iterations", "position_iterations", "restitution_threshold",
+                                    "penetration_slop", "position_correction", "event_location", "continuous",
+                                    nullptr};
+const char* const kEnvironmentKeys[] = {"type", "name", "normal", "offset", "size", "pose", "mesh", "scale",
+                                        "restitution", "friction", nullptr};
+const char* const kCollisionKeys[] = {"shape", "size", "mesh", "scale", "restitution", "friction", nullptr};
+
+namespace {
+
+constexpr double kQuaternionNormTolerance = 1e-3;
+
+std::set<std::string> keySet(const char* const* keys) {
+  std::set<std::string> set;
+  for (; *keys != nullptr; ++keys) set.insert(*keys);
+  return set;
+}
+
+// Keys a struct may not have: a typo in a collision shape changes the physics, so it stops the node.
+void refuseUnknown(const XmlRpcValue& item, const std::string& prefix, const char* const* keys) {
+  const std::set<std::string> known = keySet(keys);
+  XmlRpcValue copy = item;
+  for (const auto& member : copy) {
+    if (!known.count(member.first)) {
+      std::string allowed;
+      for (const std::string& key : known) allowed += (allowed.empty() ? "" : ", ") + key;
+      fail(prefix + member.first, member.second, "is not a key here (allowed: " + allowed + ")");
+    }
+  }
+}
+
+void readMaterial(const XmlRpcValue& params, const std::string& prefix, rigid_body::ContactMaterial& material) {
+  material.restitution = readNumber(params, prefix + "restitution", material.restitution,
+                                    [](double e) { return e >= 0.0 && e <= 1.0; },
+                                    "must be a number in [0, 1] (Newton's coefficient of restitution)");
+  material.friction = readNumber(params, prefix + "friction", material.friction, [](double mu) { return mu >= 0.0; },
+                                 "must be a finite number >= 0 (Coulomb's friction coefficient)");
+}
+
+rigid_body::ShapeType shapeType(const XmlRpcValue& params, const std::string& name, const std::string& fallback,
+                                bool plane_allowed) {
+  const std::string allowed = plane_allowed ? "must be one of: plane, box, sphere, cylinder, capsule, mesh"
+                                            : "must be one of: box, sphere, cylinder, capsule, mesh";
+  const std::string type = readString(params, name, fallback, allowed);
+  for (rigid_body::ShapeType t : {rigid_body::ShapeType::kPlane, rigid_body::ShapeType::kBox,
+                                  rigid_body::ShapeType::kSphere, rigid_body::ShapeType::kCylinder,
+                                  rigid_body::ShapeType::kCapsule, rigid_body::ShapeType::kMesh}) {
+    if (type == rigid_body::shapeTypeName(t) && (plane_allowed || t != rigid_body::ShapeType::kPlane)) return t;
+  }
+  fail(name, find(params, name) ? *find(params, name) : XmlRpcValue(type), allowed);
+}
+
+// size for a shape type: box [x, y, z], sphere [r], cylinder and capsule [r, length].
+Eigen::Vector3d readSize(const XmlRpcValue& params, const std::string& name, rigid_body::ShapeType type,
+                         const std::vector<double>& fallback) {
+  std::size_t length = 3;
+  std::string allowed = "for a box, must be [x, y, z] with 3 finite numbers > 0 [m]";
+  if (type == rigid_body::ShapeType::kSphere) length = 1, allowed = "for a sphere, must be [radius] > 0 [m]";
+  if (type == rigid_body::ShapeType::kCylinder || type == rigid_body::ShapeType::kCapsule) {
+    length = 2, allowed = "for a cylinder or capsule, must be [radius, length] with finite numbers > 0 [m]";
+  }
+  if (!find(params, name) && fallback.size() != length) {
+    fail(name, XmlRpcValue(std::string()), "must be set: " + allowed);
+  }
+  const std::vector<double> size = readNumbers(params, name, fallback, length, allowed);
+  Eigen::Vector3d out = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < length; ++i) {
+    if (!(size[i] > 0.0)) fail(name, *find(params, name), allowed);
+    out[static_cast<int>(i)] = size[i];
+  }
+  return out;
+}
+
+rigid_body::TriangleMesh readCollisionMesh(const XmlRpcValue& params, const std::string& prefix, std::size_t max_bytes) {
+  const std::string uri = readString(params, prefix + "mesh", "", "must be a mesh file path or package:// URI (.stl, .obj)");
+  if (uri.empty()) fail(prefix + "mesh", XmlRpcValue(std::string()), "must be set for a mesh shape");
+  const double scale = readNumber(params, prefix + "scale", 1.0, [](double s) { return s > 0.0; },
+                                  "must be a finite number > 0 (mesh units to metres)");
+  try {
+    std::vector<std::string> warnings;
+    // A collision mesh must be closed and not degenerate: inside and outside have to mean something.
+    return rigid_body::validatedClosedMesh(
+        rigid_body::transformed(rigid_body::loadMesh(resolveMeshUri(uri), max_bytes), scale), warnings);
+  } catch (const rigid_body::MeshError& error) {
+    fail(prefix + "mesh", *find(params, prefix + "mesh"), error.what());
+  }
+}
+
+Eigen::Isometry3d readPose(const XmlRpcValue& params, const std::string& prefix) {
+  requireStruct(params, prefix + "pose", "position, orientation");
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = readVector3(params, prefix + "pose/position", "[m]");
+  const std::vector<double> q = readNumbers(params, prefix + "pose/orientation", {0.0, 0.0, 0.0, 1.0}, 4,
+                                            "must be a unit quaternion [x, y, z, w] of 4 finite numbers");
+  const Eigen::Quaterniond orientation(q[3], q[0], q[1], q[2]);
+  if (std::abs(orientation.norm() - 1.0) > kQuaternionNormTolerance) {
+    fail(prefix + "pose/orientation", *find(params, prefix + "pose/orientation"),
+         "must be a unit quaternion [x, y, z, w]: |q| within 1e-3 of 1");
+  }
+  pose.linear() = orientation.normalized().toRotationMatrix();
+  return pose;
+}
+
+}  // namespace
+
+std::vector<rigid_body::CollisionShape> readEnvironment(const XmlRpcValue& params, std::size_t max_mesh_bytes) {
+  std::vector<rigid_body::CollisionShape> environment;
+  const XmlRpcValue* list = find(params, "environment");
+  if (!list) return environment;
+  if (list->getType() != XmlRpcValue::TypeArray) {
+    fail("environment", *list, "must be a list of shapes, each a struct with 'type' (plane, box, sphere, cylinder, capsule, mesh)");
+  }
+  std::set<std::string> names;
+  for (int i = 0; i < list->size(); ++i) {
+    const XmlRpcValue& item = (*list)[i];
+    const std::string prefix = "environment[" + std::to_string(i) + "]/";
+    if (item.getType() != XmlRpcValue::TypeStruct) fail(prefix.substr(0, prefix.size() - 1), item, "must be a struct with 'type'");
+    refuseUnknown(item, prefix, kEnvironmentKeys);
+    // The item's keys are read with the item as the namespace; errors name them with the prefix.
+    try {
+      rigid_body::CollisionShape shape;
+      if (!find(item, "type")) fail("type", XmlRpcValue(std::string()), "must be set: plane, box, sphere, cylinder, capsule or mesh");
+      shape.type = shapeType(item, "type", "", true);
+      shape.name = readString(item, "name", std::string(rigid_body::shapeTypeName(shape.type)) + std::to_string(i),
+                              "must be a name for the shape");
+      if (!names.insert(shape.name).second) fail("name", *find(item, "name"), "must be unique in ~environment");
+      readMaterial(item, "", shape.material);
+      if (shape.type == rigid_body::ShapeType::kPlane) {
+        for (const char* key : {"size", "pose", "mesh", "scale"}) {
+          if (find(item, key)) fail(key, *find(item, key), "is not a key of a plane (give normal and offset)");
+        }
+        const std::vector<double> n = readNumbers(item, "normal", {0.0, 0.0, 1.0}, 3, "must be 3 finite numbers, not all 0");
+        shape.normal = Eigen::Vector3d(n[0], n[1], n[2]);
+        if (!(shape.normal.norm() > 1e-9)) fail("normal", *find(item, "normal"), "must be 3 finite numbers, not all 0");
+        shape.normal.normalize();
+        shape.offset = readNumber(item, "offset", 0.0, [](double) { return true; }, "must be a finite number [m]");
+      } else {
+        for (const char* key : {"normal", "offset"}) {
+          if (find(item, key)) fail(key, *find(item, key), "is a key of a plane only");
+        }
+        if (shape.type == rigid_body::ShapeType::kMesh) {
+          shape.mesh = readCollisionMesh(item, "", max_mesh_bytes);
+        } else {
+          shape.size = readSize(item, "size", shape.type, {});
+        }
+        shape.pose = readPose(item, "");
+      }
+      environment.push_back(shape);
+    } catch (const ParameterError& error) {
+      std::string message = error.what();
+      const std::string head = "parameter ~";
+      if (message.compare(0, head.size(), head) == 0) message.insert(head.size(), prefix);
+      throw ParameterError(message);
+    }
+  }
+  return environment;
+}
+
+std::optional<rigid_body::CollisionShape> readCollision(const XmlRpcValue& params, const BodyConfig& body) {
+  const XmlRpcValue* value = find(params, "collision");
+  if (!value) return std::nullopt;
+  if (value->getType() == XmlRpcValue::TypeBoolean && !static_cast<bool>(*value)) return std::nullopt;
+  const bool own = value->getType() == XmlRpcValue::TypeBoolean;
+  if (!own && value->getType() != XmlRpcValue::TypeStruct) {
+    fail("collision", *value, "must be true, false or a struct {shape, size, mesh, scale, restitution, friction}");
+  }
+  if (!own) refuseUnknown(*value, "collision/", kCollisionKeys);
+  rigid_body::CollisionShape shape;
+  shape.name = body.name.empty() ? body.body_frame : body.name;
+  const std::string own_shape = body.shape == "inertia" ? "" : body.shape;
+  if (own && own_shape.empty()) {
+    fail("collision", *value, "needs a shape: a body given by ~inertia has none; give collision/shape and collision/size");
+  }
+  shape.type = own ? shapeType(XmlRpcValue(), "shape", own_shape, false)
+                   : shapeType(params, "collision/shape", own_shape, false);
+  if (!own && own_shape.empty() && !find(params, "collision/shape")) {
+    fail("collision/shape", XmlRpcValue(std::string()), "must be set: a body given by ~inertia has no shape of its own");
+  }
+  const bool same_shape = rigid_body::shapeTypeName(shape.type) == own_shape;
+  if (shape.type == rigid_body::ShapeType::kMesh) {
+    if (!own && find(params, "collision/mesh")) {
+      shape.mesh = readCollisionMesh(params, "collision/", rigid_body::kDefaultMaxMeshBytes);
+    } else if (same_shape) {
+      shape.mesh = rigid_body::transformed(body.mesh, 1.0, body.X_MB.inverse());  // into the body frame
+    } else {
+      fail("collision/mesh", XmlRpcValue(std::string()), "must be set for a mesh collision shape");
+    }
+  } else {
+    const std::vector<double> fallback = same_shape ? body.size : std::vector<double>();
+    shape.size = own ? readSize(XmlRpcValue(), "collision/size", shape.type, fallback)
+                     : readSize(params, "collision/size", shape.type, fallback);
+  }
+  if (!own) readMaterial(params, "collision/", shape.material);
+  return shape;
+}
+
+rigid_body::ContactSettings readContactSettings(const XmlRpcValue& params) {
+  rigid_body::ContactSettings settings;
+  requireStruct(params, "contact", "iterations, position_iterations, restitution_threshold, penetration_slop, "
+                                   "position_correction, event_location, continuous");
+  settings.iterations = readInteger(params, "contact/iterations", settings.iterations, 1,
+                                    "must be an integer in [1, 10000] (solver sweeps per step)");
+  if (settings.iterations > 10000) fail("contact/iterations", *find(params, "contact/iterations"), "must be an integer in [1, 10000]");
+  settings.position_iterations = readInteger(params, "contact/position_iterations", settings.position_iterations, 0,
+                                             "must be an integer in [0, 10000] (projection sweeps per step)");
+  if (settings.position_iterations > 10000) {
+    fail("contact/position_iterations", *find(params, "contact/position_iterations"), "must be an integer in [0, 10000]");
+  }
+  settings.restitution_threshold = readNumber(params, "contact/restitution_threshold", settings.restitution_threshold,
+                                              [](double v) { return v >= 0.0 && v <= 1e3; },
+                                              "must be a number in [0, 1000] [m/s]");
+  settings.penetration_slop = readNumber(params, "contact/penetration_slop", settings.penetration_slop,
+                                         [](double s) { return s >= 0.0 && s <= 0.1; }, "must be a number in [0, 0.1] [m]");
+  settings.position_correction = readNumber(params, "contact/position_correction", settings.position_correction,
+                                            [](double b) { return b >= 0.0 && b <= 1.0; }, "must be a number in [0, 1]");
+  settings.event_location = readBool(params, "contact/event_location", settings.event_location);
+  settings.continuous = readBool(params, "contact/continuous", settings.continuous);
+  return settings;
+}
+
+}  // namespace rigid_body_ros
