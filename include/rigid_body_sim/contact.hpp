@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
@@ -68,6 +69,7 @@ struct ContactStatistics {
   std::int64_t swept_impacts = 0;      ///< impacts found by the swept test (a fast body would have passed)
   std::int64_t refused_steps = 0;      ///< steps whose contact result was not finite (bodies kept their state)
   double max_penetration = 0.0;        ///< deepest penetration seen at the end of a free step [m]
+  std::int64_t out_of_range = 0;       ///< bodies now beyond 1e6 m of the origin: out of the contact world
 };
 
 }  // namespace rigid_body

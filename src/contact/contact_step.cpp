@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -19,8 +20,13 @@ constexpr double kImpactPointTolerance = 1e-6;
 constexpr double kDistanceRange = 1e3;
 // The root finder's most evaluations (regula falsi, Illinois variant: superlinear, bracketed).
 constexpr int kMaxRootIterations = 80;
+// What distanceAfter answers when the partial step fails.
+constexpr double kNoDistance = std::numeric_limits<double>::quiet_NaN();
 // A body sweeps its motion when it moves farther than this fraction of its inner radius in a step.
 constexpr double kSweepFraction = 0.5;
+// Bodies farther than this from the origin leave the contact world until they come back [m]: double
+// precision still resolves 1e-10 m there, and nothing past it can overflow Bullet's bounding boxes.
+constexpr double kContactRange = 1e6;
 // A point found this close to where a point of the same pair was last step (on the body) inherits its
 // impulses as the solver's first guess [m].
 constexpr double kWarmStartMatch = 2e-3;
@@ -53,6 +59,7 @@ ContactStep::ContactStep(const ContactSetup& setup, const std::vector<std::size_
   engagement_.assign(n, 0);
   solver_of_.assign(n, kStatic);
   contacts_.resize(n);
+  outside_.assign(n, 0);
 }
 
 std::uint64_t ContactStep::pairKey(std::size_t a, std::size_t b) const {
@@ -75,15 +82,33 @@ ContactMaterial ContactStep::combined(std::size_t a, std::size_t b) const {
 }
 
 void ContactStep::placeAll(const std::vector<State>& states) {
+  statistics_.out_of_range = 0;
   for (std::size_t k = 0; k < colliders_.size(); ++k) {
-    world_->setPose(k, states[colliders_[k]].p_WB, states[colliders_[k]].q_WB);
+    const State& state = states[colliders_[k]];
+    outside_[k] = !(state.p_WB.norm() <= kContactRange) || !state.q_WB.coeffs().allFinite();
+    if (outside_[k]) {
+      ++statistics_.out_of_range;
+      continue;  // its object stays where it last was; its points are dropped (detectPoints)
+    }
+    world_->setPose(k, state.p_WB, state.q_WB);
   }
+}
+
+void ContactStep::detectPoints() {
+  world_->detect(points_, settings_.penetration_slop);
+  if (statistics_.out_of_range == 0) return;
+  points_.erase(std::remove_if(points_.begin(), points_.end(),
+                               [&](const ContactPoint& p) {
+                                 return (world_->isBody(p.a) && outside_[p.a]) || (world_->isBody(p.b) && outside_[p.b]);
+                               }),
+                points_.end());
 }
 
 void ContactStep::start(const std::vector<State>& states) {
   placeAll(states);
   world_->detect(points_, 0.0);
   for (const ContactPoint& point : points_) {
+    if ((world_->isBody(point.a) && outside_[point.a]) || (world_->isBody(point.b) && outside_[point.b])) continue;
     if (point.distance < -settings_.penetration_slop) {
       std::ostringstream message;
       message << names_[point.a] << " starts inside " << names_[point.b] << " (penetration " << -point.distance
@@ -96,7 +121,7 @@ void ContactStep::start(const std::vector<State>& states) {
 
 void ContactStep::restart(const std::vector<State>& states) {
   placeAll(states);
-  world_->detect(points_, settings_.penetration_slop);
+  detectPoints();
   touching_.clear();
   warm_.clear();
   for (const ContactPoint& point : points_) touching_.push_back(pairKey(point.a, point.b));
@@ -123,7 +148,7 @@ void ContactStep::step(SceneBodies& bodies, const std::vector<char>& running, do
     }
   }
   placeAll(bodies.states);
-  world_->detect(points_, settings_.penetration_slop);
+  detectPoints();
   // 2. Impacts that begin within the step, each alone on its bodies, are resolved at their time.
   if (settings_.event_location || settings_.continuous) {
     findCandidates(bodies, running, h);
@@ -131,20 +156,29 @@ void ContactStep::step(SceneBodies& bodies, const std::vector<char>& running, do
     for (const Candidate& candidate : candidates_) any = resolveImpact(bodies, candidate, h) || any;
     if (any) {
       placeAll(bodies.states);
-      world_->detect(points_, settings_.penetration_slop);
+      detectPoints();
     }
   }
   // 3. The contacts at the end of the step: velocity solve, then position projection.
   solveResting(bodies, h);
-  bool finite = true;
-  for (std::size_t k = 0; k < n; ++k) finite = finite && isFinite(bodies.states[colliders_[k]]);
-  if (!finite) {
-    for (std::size_t k = 0; k < n; ++k) {
-      bodies.states[colliders_[k]] = start_[k];
-      if (running[k]) failed[k] = StepStatus::kNonFinite;
-    }
+  // Nothing non-finite reaches a state or a contact report: a body whose result is not finite keeps its
+  // state from before the step (and latches its divergence); such a step is counted as refused.
+  bool refused = false;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (isFinite(bodies.states[colliders_[k]])) continue;
+    bodies.states[colliders_[k]] = start_[k];
+    if (running[k]) failed[k] = StepStatus::kNonFinite;
+    refused = true;
+  }
+  for (const SolverContact& c : solver_contacts_) {
+    refused = refused || !(std::isfinite(c.normal_impulse) && c.friction_impulse.allFinite() && c.n.allFinite() &&
+                           c.r_a.allFinite() && c.r_b.allFinite());
+  }
+  if (refused) {
+    for (auto& list : contacts_) list.clear();
     ++statistics_.refused_steps;
     touching_.clear();
+    warm_.clear();
   }
 }
 
@@ -168,7 +202,7 @@ void ContactStep::findCandidates(SceneBodies& bodies, const std::vector<char>& r
     for (std::size_t k = 0; k < colliders_.size(); ++k) {
       const State& before = start_[k];
       const State& after = bodies.states[colliders_[k]];
-      if (!running[k] || engagement_[k] != 0) continue;
+      if (!running[k] || engagement_[k] != 0 || outside_[k]) continue;
       if ((after.p_WB - before.p_WB).norm() <= kSweepFraction * inner_radius_[k]) continue;
       const auto hit = world_->sweep(k, before.p_WB, before.q_WB, after.p_WB, after.q_WB);
       if (!hit || hit->fraction <= 0.0 || wasTouching(pairKey(k, hit->object))) continue;
@@ -194,7 +228,9 @@ double ContactStep::distanceAfter(SceneBodies& bodies, const Candidate& c, doubl
     State state = start_[object];
     if (tau > 0.0) {
       Integrator integrator = bodies.integrators[body];
-      integrator.step(bodies.models[body], bodies.terms[body], bodies.inputs[body], tau, state);
+      const StepStatus status = integrator.step(bodies.models[body], bodies.terms[body], bodies.inputs[body], tau, state);
+      // A partial step the integrator cannot take leaves the impact to the solver at the step's end.
+      if (status != StepStatus::kOk || !(state.p_WB.norm() <= kContactRange)) return kNoDistance;
     }
     world_->setPose(object, state.p_WB, state.q_WB);
     if (keep_states) bodies.states[body] = state;
@@ -206,8 +242,9 @@ bool ContactStep::resolveImpact(SceneBodies& bodies, const Candidate& c, double 
   // Bracket the first touch: apart at the start, touching at the end (or at the swept hit).
   double lo = 0.0, hi = h;
   double f_lo = distanceAfter(bodies, c, 0.0, false);
-  if (!(f_lo > 0.0)) return false;  // already touching at the start: the solver's
+  if (!(f_lo > 0.0) || std::isnan(f_lo)) return false;  // already touching at the start: the solver's
   double f_hi = distanceAfter(bodies, c, hi, false);
+  if (std::isnan(f_hi)) return restoreAfterFailedLocation(bodies, c);
   if (c.fraction >= 0.0 && f_hi > 0.0) {
     // Passed through within the step: the swept hit is where it met the obstacle; look just beyond it.
     hi = std::min(h, c.fraction * h * (1.0 + 1e-9));
@@ -222,13 +259,14 @@ bool ContactStep::resolveImpact(SceneBodies& bodies, const Candidate& c, double 
       }
     }
   }
-  if (f_hi > 0.0) return false;
+  if (!(f_hi <= 0.0)) return restoreAfterFailedLocation(bodies, c);
   // Regula falsi, Illinois variant: keeps the bracket, converges superlinearly on a smooth distance.
   int side = 0;
   for (int i = 0; i < kMaxRootIterations && hi - lo > settings_.event_tolerance; ++i) {
     double tau = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
     if (!(tau > lo && tau < hi)) tau = 0.5 * (lo + hi);
     const double f = distanceAfter(bodies, c, tau, false);
+    if (std::isnan(f)) return restoreAfterFailedLocation(bodies, c);
     if (f > 0.0) {
       lo = tau, f_lo = f;
       if (side == -1) f_hi *= 0.5;
@@ -271,6 +309,16 @@ bool ContactStep::resolveImpact(SceneBodies& bodies, const Candidate& c, double 
   impacts_.push_back({start_[body_object].t + hi, colliders_[body_object], partner(body_object == c.a ? c.b : c.a),
                       approach});
   return true;
+}
+
+bool ContactStep::restoreAfterFailedLocation(SceneBodies& bodies, const Candidate& c) {
+  // The pair's objects go back to the end-of-step poses the detection saw.
+  for (std::size_t object : {c.a, c.b}) {
+    if (!world_->isBody(object)) continue;
+    const State& state = bodies.states[colliders_[object]];
+    world_->setPose(object, state.p_WB, state.q_WB);
+  }
+  return false;
 }
 
 std::size_t ContactStep::solverIndex(const SceneBodies& bodies, std::size_t object) {

@@ -36,9 +36,9 @@ class ContactStep {
   /// deeper than the penetration slop; otherwise takes the initial touching pairs as resting.
   void start(const std::vector<State>& states);
 
-  /// One step of h for the colliding bodies whose `running[k]` is set. A body whose free step fails keeps
-  /// its state and gets `failed[k]`; a contact result that is not finite refuses the whole step (every
-  /// colliding body keeps its state, all running ones get `failed`) and is counted.
+  /// One step of h for the colliding bodies whose `running[k]` is set. A body whose free step fails, or
+  /// whose result is not finite, keeps its state from before the step and gets `failed[k]`; such a step is
+  /// counted as refused and reports no contacts.
   void step(SceneBodies& bodies, const std::vector<char>& running, double h, std::vector<StepStatus>& failed);
 
   /// Forgets the touching pairs, warm starts and figures (after a reset or a state set from outside).
@@ -63,6 +63,8 @@ class ContactStep {
   ContactPartner partner(std::size_t object) const;
   ContactMaterial combined(std::size_t a, std::size_t b) const;
   void placeAll(const std::vector<State>& states);
+  void detectPoints();
+  bool restoreAfterFailedLocation(SceneBodies& bodies, const Candidate& candidate);
   void findCandidates(SceneBodies& bodies, const std::vector<char>& running, double h);
   bool resolveImpact(SceneBodies& bodies, const Candidate& candidate, double h);
   double distanceAfter(SceneBodies& bodies, const Candidate& candidate, double tau, bool keep_states);
@@ -75,6 +77,7 @@ class ContactStep {
   std::vector<ContactMaterial> materials_;  // per collision object
   std::vector<std::string> names_;          // per collision object, for messages
   std::vector<double> inner_radius_;        // per colliding body
+  std::vector<char> outside_;               // per colliding body: beyond the contact range
   ContactSettings settings_;
   bool recording_ = false;
 

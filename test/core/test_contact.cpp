@@ -311,3 +311,59 @@ TEST(Contact, ABodyWithoutCollisionStepsExactlyAsInAScenewithoutContact) {
   EXPECT_LT(with_contact.state(0).p_WB.z(), -5.0);
   EXPECT_NEAR(with_contact.state(1).p_WB.z(), 0.1, 1e-3);  // the ball with a shape lands and stays
 }
+
+TEST(Contact, ExtremeStatesAndWrenchesNeverGiveANonFiniteStateOrACrash) {
+  // A pile of shapes on the ground and in a thin-walled bin, driven by wrenches and states from 1e-300 to
+  // 1e300 and hurled beyond the contact range: every state stays finite, the scene keeps stepping.
+  ContactSetup setup;
+  setup.environment = {plane(Eigen::Vector3d::UnitZ(), 0.0, 0.5)};
+  CollisionShape wall = shapeOf(ShapeType::kBox, Eigen::Vector3d(0.01, 2.0, 1.0), 0.5, 0.0);
+  wall.pose.translation() = Eigen::Vector3d(1.0, 0.0, 0.5);
+  setup.environment.push_back(wall);
+  std::vector<BodyDefinition> bodies;
+  const std::vector<ShapeType> types = {ShapeType::kBox, ShapeType::kSphere, ShapeType::kCylinder, ShapeType::kCapsule};
+  for (int i = 0; i < 8; ++i) {
+    BodyDefinition b = body(MassProperties::box(1.0, Eigen::Vector3d(0.2, 0.2, 0.2)), Eigen::Vector3d(0.25 * i - 1.0, 0, 0.15),
+                            Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero(), kDown);
+    b.takes_input = true;
+    bodies.push_back(b);
+    setup.bodies.push_back(shapeOf(types[i % 4], Eigen::Vector3d(0.1, 0.1, 0.1), 0.5, i % 2 ? 1.0 : 0.0));
+  }
+  Scene scene(bodies, IntegratorType::kSemiImplicitEuler, 1e-3, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+  scene.setRecordContacts(true);
+  std::uint64_t seed = 12345;
+  auto uniform = [&seed]() {
+    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(seed >> 11) * (1.0 / 9007199254740992.0);
+  };
+  auto extreme = [&]() {
+    const double magnitude = std::pow(10.0, -300.0 + 600.0 * uniform());
+    return (uniform() < 0.5 ? -1.0 : 1.0) * (uniform() < 0.2 ? 0.0 : magnitude);
+  };
+  for (int round = 0; round < 300; ++round) {
+    const std::size_t k = static_cast<std::size_t>(uniform() * 8) % 8;
+    if (uniform() < 0.5) {
+      AppliedWrench input;
+      input.world.force = Eigen::Vector3d(extreme(), extreme(), extreme());
+      input.world.torque = Eigen::Vector3d(extreme(), extreme(), extreme());
+      scene.setInput(k, input);
+    } else if (uniform() < 0.3) {
+      State state = scene.state(k);
+      state.p_WB = Eigen::Vector3d(extreme(), extreme(), std::abs(extreme()));
+      state.P_W = Eigen::Vector3d(extreme(), extreme(), extreme());
+      state.L_W = Eigen::Vector3d(extreme(), extreme(), extreme());
+      scene.setState(k, state);
+    } else {
+      scene.setInput(k, AppliedWrench());
+    }
+    scene.step(1 + static_cast<std::int64_t>(uniform() * 20));
+    for (std::size_t b = 0; b < scene.bodyCount(); ++b) {
+      ASSERT_TRUE(isFinite(scene.state(b))) << "body " << b << " in round " << round;
+      for (const Contact& contact : scene.contacts(b)) {
+        ASSERT_TRUE(contact.position_W.allFinite() && contact.normal_W.allFinite() &&
+                    std::isfinite(contact.normal_impulse) && contact.friction_impulse_W.allFinite());
+      }
+    }
+    if (round % 50 == 49) scene.reset();
+  }
+}
