@@ -4,7 +4,7 @@
 // μ·normal impulse), then a position projection for what penetration remains (nonlinear Gauss–Seidel on
 // positions, which moves bodies without touching their momenta, so it adds no kinetic energy).
 // A contact with one point and no friction gives the impulse formula of Baraff & Witkin's notes
-// ("Rigid Body Simulation", §8): j = −(1+e) v⁻·n / (1/M_a + 1/M_b + n·(I_a⁻¹(r_a×n))×r_a + n·(I_b⁻¹(r_b×n))×r_b).
+// ("Rigid Body Simulation", part II, colliding contact): j = −(1+e) v⁻·n / (1/M_a + 1/M_b + n·(I_a⁻¹(r_a×n))×r_a + n·(I_b⁻¹(r_b×n))×r_b).
 #pragma once
 
 #include <Eigen/Core>

@@ -31,6 +31,21 @@ constexpr double kContactRange = 1e6;
 // impulses as the solver's first guess [m].
 constexpr double kWarmStartMatch = 2e-3;
 
+// c in Δx = c h² a: how far one step of the method moves a body under a constant acceleration a, from rest.
+// Exact motion, and every method of order ≥ 2, gives ½ (Σ bᵢcᵢ = ½ for a Runge–Kutta method); explicit Euler
+// moves x with the old velocity (0); semi-implicit Euler with the new one (1). Using the method's own c for
+// the contact force makes a body at rest exactly at rest: the contact undoes the free step's fall.
+double constantForceWeight(IntegratorType type) {
+  switch (type) {
+    case IntegratorType::kExplicitEuler:
+      return 0.0;
+    case IntegratorType::kSemiImplicitEuler:
+      return 1.0;
+    default:
+      return 0.5;
+  }
+}
+
 void rotate(Eigen::Quaterniond& q, const Eigen::Vector3d& rotation_W) {
   const double angle = rotation_W.norm();
   if (angle == 0.0) return;
@@ -39,8 +54,9 @@ void rotate(Eigen::Quaterniond& q, const Eigen::Vector3d& rotation_W) {
 
 }  // namespace
 
-ContactStep::ContactStep(const ContactSetup& setup, const std::vector<std::size_t>& colliders)
-    : colliders_(colliders), settings_(setup.settings) {
+ContactStep::ContactStep(const ContactSetup& setup, const std::vector<std::size_t>& colliders,
+                         IntegratorType integrator)
+    : colliders_(colliders), settings_(setup.settings), integrator_type_(integrator) {
   std::vector<CollisionShape> shapes;
   for (std::size_t body : colliders) {
     shapes.push_back(*setup.bodies[body]);
@@ -190,8 +206,8 @@ void ContactStep::findCandidates(SceneBodies& bodies, const std::vector<char>& r
     const std::uint64_t key = pairKey(point.a, point.b);
     const bool touching = wasTouching(key);
     if (point.distance > (touching ? settings_.penetration_slop : 0.0)) continue;
-    if (!engaged_.empty() && engaged_.back() == key) continue;  // a manifold's points come together
-    if (std::find(engaged_.begin(), engaged_.end(), key) != engaged_.end()) continue;
+    // A pair's points come together (one manifold per pair, one pass per body and half-space).
+    if (!engaged_.empty() && engaged_.back() == key) continue;
     engaged_.push_back(key);
     if (world_->isBody(point.a)) ++engagement_[point.a];
     if (world_->isBody(point.b)) ++engagement_[point.b];
@@ -410,10 +426,12 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
   prepareContacts(solver_contacts_, solver_bodies_, options);
   solveVelocities(solver_contacts_, solver_bodies_, options);
   // The impulses stand for a contact force constant over the step: besides the momenta they move the body
-  // by ½ h Δv (and turn it by ½ h Δω), as that force would have; then the projection.
+  // by c h Δv (and turn it by c h Δω), as the integrator would have moved it under that force; then the
+  // projection.
+  const double weight = h * constantForceWeight(integrator_type_);
   for (SolverBody& s : solver_bodies_) {
-    s.dx = 0.5 * h * s.inverse_mass * s.dP;
-    s.dtheta = 0.5 * h * (s.inverse_inertia_W * s.dL);
+    s.dx = weight * s.inverse_mass * s.dP;
+    s.dtheta = weight * (s.inverse_inertia_W * s.dL);
   }
   projectPositions(solver_contacts_, solver_bodies_, settings_.position_iterations, settings_.penetration_slop,
                    settings_.position_correction);

@@ -30,7 +30,7 @@ struct SceneBodies {
 class ContactStep {
  public:
   /// `colliders[k]` is the scene index of the k-th colliding body; setup.bodies[that index] its shape.
-  ContactStep(const ContactSetup& setup, const std::vector<std::size_t>& colliders);
+  ContactStep(const ContactSetup& setup, const std::vector<std::size_t>& colliders, IntegratorType integrator);
 
   /// Throws std::invalid_argument naming both sides when a body starts inside another or the environment
   /// deeper than the penetration slop; otherwise takes the initial touching pairs as resting.
@@ -79,6 +79,7 @@ class ContactStep {
   std::vector<double> inner_radius_;        // per colliding body
   std::vector<char> outside_;               // per colliding body: beyond the contact range
   ContactSettings settings_;
+  IntegratorType integrator_type_;
   bool recording_ = false;
 
   // Per step, reused (no allocation once warm).

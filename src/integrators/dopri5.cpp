@@ -86,7 +86,11 @@ StepStatus Integrator::dopri5Step(const Model& model, const StepTerms& terms, co
     memory.coefficients.col(1).setZero();
     memory.t0 = state.t;
     memory.h = 0.0;
-    if (!(memory.next_h > 0.0)) memory.next_h = h;
+    // A restart follows a jump in the state or the input (a new wrench, a contact impulse): the step size the
+    // old trajectory allowed says nothing about the new one, so it starts again from the caller's step. (A
+    // free fall lets the control grow the step without bound; taken across an impulse, the dense output of a
+    // step thousands of times h loses digits to cancellation: millimetres on a box resting on the ground.)
+    if (!(memory.next_h > 0.0) || memory.next_h > h) memory.next_h = h;
   }
   Stages<7> stages;
   Derivative fsal;

@@ -367,3 +367,26 @@ TEST(Contact, ExtremeStatesAndWrenchesNeverGiveANonFiniteStateOrACrash) {
     if (round % 50 == 49) scene.reset();
   }
 }
+
+TEST(Contact, EveryIntegratorRestsABoxAndStopsASlidingOne) {
+  // The contact step takes every integrator's free motion; the position update matches the method's own
+  // response to a constant force, so each rests exactly and stops a sliding box where physics says.
+  const double mu = 0.4, v0 = 2.0;
+  const Eigen::Vector3d size(0.2, 0.2, 0.1);
+  for (IntegratorType type : allIntegrators()) {
+    ContactSetup setup;
+    setup.environment = {plane(Eigen::Vector3d::UnitZ(), 0.0, mu)};
+    setup.bodies = {shapeOf(ShapeType::kBox, size, mu, 0.0), shapeOf(ShapeType::kBox, size, mu, 0.0)};
+    Scene scene({body(MassProperties::box(2.0, size), Eigen::Vector3d(0, 0, 0.05), Eigen::Quaterniond::Identity(),
+                      Eigen::Vector3d::Zero(), kDown),
+                 body(MassProperties::box(2.0, size), Eigen::Vector3d(0, 1, 0.05), Eigen::Quaterniond::Identity(),
+                      Eigen::Vector3d(v0, 0, 0), kDown)},
+                type, 1e-3, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+    scene.step(2000);
+    const std::string name = integratorName(type);
+    EXPECT_LT((scene.state(0).p_WB - Eigen::Vector3d(0, 0, 0.05)).norm(), 1e-9) << name << ": the resting box moved";
+    const double stop_distance = v0 * v0 / (2.0 * mu * kG);
+    EXPECT_NEAR(scene.state(1).p_WB.x(), stop_distance, 5e-3 * stop_distance) << name;
+    EXPECT_NEAR(scene.state(1).p_WB.z(), 0.05, 1e-6) << name;
+  }
+}

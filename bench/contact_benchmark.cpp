@@ -1,0 +1,123 @@
+// Cost of contact per body and step (Google Benchmark): N boxes resting on the ground apart from each other,
+// N boxes in stacks of 10 (every box touches two others or the ground), and N spheres in the air far apart
+// (the broad phase alone: no pair overlaps). Not a test: run by scripts/benchmark.sh; numbers in
+// docs/performance.md. One iteration is 10 steps of 1 ms (the node's default tick). Scenes without colliders
+// are scene_benchmark's: their cost with contact compiled in is measured there.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <vector>
+
+#include "rigid_body_sim/kinematics.hpp"
+#include "rigid_body_sim/scene.hpp"
+
+namespace {
+
+using namespace rigid_body;
+
+constexpr std::int64_t kStepsPerTick = 10;
+const Eigen::Vector3d kBox(0.3, 0.3, 0.2);
+
+CollisionShape ground() {
+  CollisionShape shape;
+  shape.type = ShapeType::kPlane;
+  shape.name = "ground";
+  return shape;
+}
+
+CollisionShape boxShape() {
+  CollisionShape shape;
+  shape.type = ShapeType::kBox;
+  shape.size = kBox;
+  return shape;
+}
+
+BodyDefinition bodyAt(const MassProperties& mass, const Eigen::Vector3d& p, const Eigen::Vector3d& gravity) {
+  BodyDefinition body;
+  body.model.mass = mass;
+  body.model.forces.gravity_W = gravity;
+  body.initial.p_WB = p;
+  body.takes_input = false;
+  return body;
+}
+
+// columns × height boxes: height 1 is boxes resting on the ground apart; height 10 is stacks of 10.
+Scene boxes(std::size_t count, std::size_t height, IntegratorType type) {
+  ContactSetup setup;
+  setup.environment = {ground()};
+  std::vector<BodyDefinition> bodies;
+  const std::size_t columns = count / height;
+  const auto side = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(columns))));
+  for (std::size_t c = 0; c < columns; ++c) {
+    for (std::size_t level = 0; level < height; ++level) {
+      const Eigen::Vector3d p(0.5 * static_cast<double>(c % side), 0.5 * static_cast<double>(c / side),
+                              0.1 + 0.2 * static_cast<double>(level));
+      bodies.push_back(bodyAt(MassProperties::box(1.0, kBox), p, Eigen::Vector3d(0.0, 0.0, -9.81)));
+      setup.bodies.push_back(boxShape());
+    }
+  }
+  Scene scene(bodies, type, 0.001, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+  scene.step(100);  // warm: the contacts settled, the warm-start memory filled
+  return scene;
+}
+
+// Spheres 1 m apart in a cube lattice, zero g, slowly drifting: the broad phase finds no overlapping pair.
+Scene apart(std::size_t count, IntegratorType type) {
+  ContactSetup setup;
+  std::vector<BodyDefinition> bodies;
+  const auto side = static_cast<std::size_t>(std::ceil(std::cbrt(static_cast<double>(count))));
+  for (std::size_t i = 0; i < count; ++i) {
+    const Eigen::Vector3d p(static_cast<double>(i % side), static_cast<double>((i / side) % side),
+                            static_cast<double>(i / (side * side)));
+    BodyDefinition body = bodyAt(MassProperties::sphere(1.0, 0.1), p, Eigen::Vector3d::Zero());
+    body.initial.P_W = Eigen::Vector3d(0.01, 0.0, 0.0);
+    bodies.push_back(body);
+    CollisionShape sphere;
+    sphere.type = ShapeType::kSphere;
+    sphere.size.x() = 0.1;
+    setup.bodies.push_back(sphere);
+  }
+  return Scene(bodies, type, 0.001, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+}
+
+void run(benchmark::State& bench, Scene& scene) {
+  for (auto _ : bench) {
+    scene.step(kStepsPerTick);
+    benchmark::DoNotOptimize(scene.state(scene.bodyCount() - 1));
+  }
+  bench.counters["per_body_step"] = benchmark::Counter(
+      static_cast<double>(bench.iterations()) * static_cast<double>(scene.bodyCount() * kStepsPerTick),
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  bench.counters["bodies"] = static_cast<double>(scene.bodyCount());
+}
+
+void restingRk4(benchmark::State& bench) {
+  Scene scene = boxes(static_cast<std::size_t>(bench.range(0)), 1, IntegratorType::kRk4);
+  run(bench, scene);
+}
+void restingSemiImplicit(benchmark::State& bench) {
+  Scene scene = boxes(static_cast<std::size_t>(bench.range(0)), 1, IntegratorType::kSemiImplicitEuler);
+  run(bench, scene);
+}
+void stacksRk4(benchmark::State& bench) {
+  Scene scene = boxes(static_cast<std::size_t>(bench.range(0)), 10, IntegratorType::kRk4);
+  run(bench, scene);
+}
+void stacksSemiImplicit(benchmark::State& bench) {
+  Scene scene = boxes(static_cast<std::size_t>(bench.range(0)), 10, IntegratorType::kSemiImplicitEuler);
+  run(bench, scene);
+}
+void broadPhaseOnly(benchmark::State& bench) {
+  Scene scene = apart(static_cast<std::size_t>(bench.range(0)), IntegratorType::kSemiImplicitEuler);
+  run(bench, scene);
+}
+
+}  // namespace
+
+BENCHMARK(restingRk4)->Arg(1)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(restingSemiImplicit)->Arg(1)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(stacksRk4)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(stacksSemiImplicit)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(broadPhaseOnly)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
+
+BENCHMARK_MAIN();
