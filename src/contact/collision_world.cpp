@@ -253,7 +253,9 @@ double CollisionWorld::planeContacts(std::size_t body, std::size_t plane_object,
   }
   double smallest = max_distance;
   const Eigen::Vector3d& n = plane->normal;
+  int feature = -1;
   planeFeatures(impl_->body_shapes[body], impl_->shape_poses[body], n, [&](const Eigen::Vector3d& x) {
+    ++feature;
     const double distance = n.dot(x) - plane->offset;
     smallest = std::min(smallest, distance);
     if (distance > max_distance) return;
@@ -264,6 +266,7 @@ double CollisionWorld::planeContacts(std::size_t body, std::size_t plane_object,
     point.on_b = x - distance * n;
     point.normal = n;
     point.distance = distance;
+    point.feature = feature;
     points.push_back(point);
   });
   return smallest;

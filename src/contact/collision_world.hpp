@@ -24,6 +24,7 @@ struct ContactPoint {
   Eigen::Vector3d on_b = Eigen::Vector3d::Zero();     ///< witness point on b's surface, world [m]
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< from b towards a, unit
   double distance = 0.0;                              ///< signed: < 0 when penetrating [m]
+  int feature = -1;  ///< against a half-space: which feature of the body's shape (the same from step to step)
 };
 
 /// A swept test's first hit: the fraction of the straight motion and the object hit.

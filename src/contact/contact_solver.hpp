@@ -1,50 +1,54 @@
 // The velocity-level contact solver: sequential impulses (projected Gauss–Seidel on the contact impulses,
 // Catto, "Iterative Dynamics with Temporal Coherence", GDC 2005) with warm starting, Newton's restitution
-// law on the normal and Coulomb's friction cone (the friction impulse projected onto the disc of radius
-// μ·normal impulse), then a position projection for what penetration remains (nonlinear Gauss–Seidel on
-// positions, which moves bodies without touching their momenta, so it adds no kinetic energy).
-// A contact with one point and no friction gives the impulse formula of Baraff & Witkin's notes
-// ("Rigid Body Simulation", part II, colliding contact): j = −(1+e) v⁻·n / (1/M_a + 1/M_b + n·(I_a⁻¹(r_a×n))×r_a + n·(I_b⁻¹(r_b×n))×r_b).
+// law on the normal and Coulomb's friction disc, then a position projection for what penetration remains
+// (nonlinear Gauss–Seidel on positions, which moves bodies without touching their momenta, so it adds no
+// kinetic energy). A contact with one point and no friction gives the impulse formula of Baraff & Witkin's
+// notes ("Rigid Body Simulation", part II, colliding contact):
+//   j = −(1+e) v⁻·n / (1/M_a + 1/M_b + n·(I_a⁻¹(r_a×n))×r_a + n·(I_b⁻¹(r_b×n))×r_b).
 #pragma once
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstddef>
-#include <limits>
 #include <vector>
 
 namespace rigid_body {
 namespace contact {
 
-constexpr std::size_t kStatic = std::numeric_limits<std::size_t>::max();  ///< the environment: infinite mass
+/// Solver body 0 is the environment: zero inverse mass and inertia, at rest. Every contact refers to two
+/// solver bodies, so the inner loop has no branch for "static or not".
+constexpr std::size_t kEnvironment = 0;
 
 /// A body as the solver sees it: inverse mass and world inverse inertia, working velocities, and the
-/// momentum and position changes it accumulates.
+/// position changes it accumulates.
 struct SolverBody {
   double inverse_mass = 0.0;
   Eigen::Matrix3d inverse_inertia_W = Eigen::Matrix3d::Zero();
   Eigen::Vector3d v = Eigen::Vector3d::Zero();       ///< [m/s]
   Eigen::Vector3d w = Eigen::Vector3d::Zero();       ///< [rad/s]
-  Eigen::Vector3d dP = Eigen::Vector3d::Zero();      ///< Σ impulses [N s]
+  Eigen::Vector3d dP = Eigen::Vector3d::Zero();      ///< Σ impulses [N s] (summed after the solve)
   Eigen::Vector3d dL = Eigen::Vector3d::Zero();      ///< Σ r × impulse about the centre of mass [N m s]
-  Eigen::Vector3d dx = Eigen::Vector3d::Zero();      ///< position projection [m]
-  Eigen::Vector3d dtheta = Eigen::Vector3d::Zero();  ///< orientation projection, a rotation vector [rad]
-  bool touched = false;                             ///< some impulse or projection acted on it
+  Eigen::Vector3d dx = Eigen::Vector3d::Zero();      ///< position change [m]
+  Eigen::Vector3d dtheta = Eigen::Vector3d::Zero();  ///< orientation change, a rotation vector [rad]
 };
 
-/// One contact point between body a and body b (or the environment, kStatic), normal from b towards a.
+/// One contact point between solver bodies a and b (b may be kEnvironment), normal from b towards a. The
+/// products the inner loop needs (r × n, I⁻¹(r × n) and the same for both tangents) are made once in
+/// prepareContacts.
 struct SolverContact {
-  std::size_t a = kStatic, b = kStatic;
+  std::size_t a = kEnvironment, b = kEnvironment;
   Eigen::Vector3d r_a = Eigen::Vector3d::Zero(), r_b = Eigen::Vector3d::Zero();  ///< from each centre of mass
   Eigen::Vector3d n = Eigen::Vector3d::UnitZ(), t1 = Eigen::Vector3d::UnitX(), t2 = Eigen::Vector3d::UnitY();
   double separation = 0.0;     ///< signed distance when detected [m]
   double friction = 0.0;       ///< μ
   double restitution = 0.0;    ///< e
   double target_speed = 0.0;   ///< the normal relative speed the solve aims at (≥ it)
-  double normal_mass = 0.0;    ///< 1 / (n·K n)
-  Eigen::Matrix2d tangent_mass = Eigen::Matrix2d::Zero();  ///< (T K Tᵀ)⁻¹ for the two tangents
-  double normal_impulse = 0.0;                             ///< accumulated [N s], ≥ 0
+  double normal_impulse = 0.0;                                 ///< accumulated [N s], ≥ 0
   Eigen::Vector2d friction_impulse = Eigen::Vector2d::Zero();  ///< accumulated [N s], |·| ≤ μ normal_impulse
+  // Made by prepareContacts: r × d and I⁻¹(r × d) for d = n, t1, t2 (columns), and the effective masses.
+  Eigen::Matrix3d cross_a, cross_b, response_a, response_b;
+  double normal_mass = 0.0;                                ///< 1 / (n·K n)
+  Eigen::Matrix2d tangent_mass = Eigen::Matrix2d::Zero();  ///< (T K Tᵀ)⁻¹ for the two tangents
 };
 
 /// How a solve treats the approach velocity.
@@ -55,14 +59,18 @@ struct SolveOptions {
   double dt = 0.0;                      ///< > 0: a separated contact (separation > 0) may close at separation/dt
 };
 
+/// A solver body for the environment, to put first in the bodies' list.
+SolverBody environmentBody();
+
 /// The relative velocity of the contact point of a with respect to b's.
 Eigen::Vector3d relativeVelocity(const SolverContact& contact, const std::vector<SolverBody>& bodies);
 
-/// Effective masses and target speeds from the bodies' current velocities; keeps the warm-start impulses
-/// and applies them.
+/// Jacobian products, effective masses and target speeds from the bodies' current velocities; applies the
+/// warm-start impulses the contacts carry.
 void prepareContacts(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options);
 
-/// Sequential impulses until every contact meets its target within rounding or the iterations run out.
+/// Sequential impulses until every contact meets its target within rounding or the iterations run out;
+/// then each body's dP and dL are summed from the contacts' impulses.
 void solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options);
 
 /// Position projection: moves bodies apart along the normals until no penetration beyond `slop` remains

@@ -30,6 +30,8 @@ constexpr double kContactRange = 1e6;
 // A point found this close to where a point of the same pair was last step (on the body) inherits its
 // impulses as the solver's first guess [m].
 constexpr double kWarmStartMatch = 2e-3;
+// A colliding body not yet in the solver's list.
+constexpr std::size_t kUnassigned = std::numeric_limits<std::size_t>::max();
 
 // c in Δx = c h² a: how far one step of the method moves a body under a constant acceleration a, from rest.
 // Exact motion, and every method of order ≥ 2, gives ½ (Σ bᵢcᵢ = ½ for a Runge–Kutta method); explicit Euler
@@ -73,7 +75,7 @@ ContactStep::ContactStep(const ContactSetup& setup, const std::vector<std::size_
   const std::size_t n = colliders.size();
   start_.resize(n);
   engagement_.assign(n, 0);
-  solver_of_.assign(n, kStatic);
+  solver_of_.assign(n, kUnassigned);
   contacts_.resize(n);
   outside_.assign(n, 0);
 }
@@ -298,12 +300,19 @@ bool ContactStep::resolveImpact(SceneBodies& bodies, const Candidate& c, double 
   const double deepest = world_->pairDistance(c.a, c.b, kImpactPointTolerance, &pair_points_);
   solver_contacts_.clear();
   solver_points_.clear();
-  solver_body_of_.clear();
-  solver_bodies_.clear();
+  startSolverLists();
   for (const ContactPoint& point : pair_points_) {
     if (point.distance <= deepest + kImpactPointTolerance) addContact(point, bodies, false);
   }
-  if (solver_contacts_.empty()) return false;
+  if (solver_contacts_.empty()) {  // nothing within reach after all: the rest of the step is free motion
+    for (std::size_t object : {c.a, c.b}) {
+      if (!world_->isBody(object)) continue;
+      const std::size_t body = colliders_[object];
+      bodies.integrators[body].step(bodies.models[body], bodies.terms[body], bodies.inputs[body], h - hi,
+                                    bodies.states[body]);
+    }
+    return true;
+  }
   SolveOptions options;
   options.iterations = settings_.iterations;
   options.restitution_threshold = settings_.restitution_threshold;
@@ -311,13 +320,13 @@ bool ContactStep::resolveImpact(SceneBodies& bodies, const Candidate& c, double 
   const double approach = -solver_contacts_.front().n.dot(relativeVelocity(solver_contacts_.front(), solver_bodies_));
   solveVelocities(solver_contacts_, solver_bodies_, options);
   // Momenta change by the impulses; the rest of the step is free motion again.
-  for (std::size_t s = 0; s < solver_bodies_.size(); ++s) {
+  for (std::size_t s = 1; s < solver_bodies_.size(); ++s) {  // 0 is the environment
     const std::size_t k = solver_body_of_[s], body = colliders_[k];
     State& state = bodies.states[body];
     state.P_W += solver_bodies_[s].dP;
     state.L_W += solver_bodies_[s].dL;
     bodies.integrators[body].step(bodies.models[body], bodies.terms[body], bodies.inputs[body], h - hi, state);
-    solver_of_[k] = kStatic;
+    solver_of_[k] = kUnassigned;
   }
   ++(c.fraction >= 0.0 ? statistics_.swept_impacts : statistics_.located_impacts);
   if (impacts_.size() == kImpactLog) impacts_.erase(impacts_.begin());
@@ -337,9 +346,14 @@ bool ContactStep::restoreAfterFailedLocation(SceneBodies& bodies, const Candidat
   return false;
 }
 
+void ContactStep::startSolverLists() {
+  solver_bodies_.assign(1, environmentBody());
+  solver_body_of_.assign(1, kUnassigned);
+}
+
 std::size_t ContactStep::solverIndex(const SceneBodies& bodies, std::size_t object) {
-  if (!world_->isBody(object)) return kStatic;
-  if (solver_of_[object] != kStatic) return solver_of_[object];
+  if (!world_->isBody(object)) return kEnvironment;
+  if (solver_of_[object] != kUnassigned) return solver_of_[object];
   const std::size_t body = colliders_[object];
   const MassProperties& mass = bodies.models[body].mass;
   const State& state = bodies.states[body];
@@ -359,8 +373,8 @@ void ContactStep::addContact(const ContactPoint& point, const SceneBodies& bodie
   SolverContact c;
   c.a = solverIndex(bodies, point.a);
   c.b = solverIndex(bodies, point.b);
-  if (c.a != kStatic) c.r_a = point.on_a - bodies.states[colliders_[point.a]].p_WB;
-  if (c.b != kStatic) c.r_b = point.on_b - bodies.states[colliders_[point.b]].p_WB;
+  if (c.a != kEnvironment) c.r_a = point.on_a - bodies.states[colliders_[point.a]].p_WB;
+  if (c.b != kEnvironment) c.r_b = point.on_b - bodies.states[colliders_[point.b]].p_WB;
   c.n = point.normal;
   CollisionWorld::tangentBasis(c.n, c.t1, c.t2);
   c.separation = point.distance;
@@ -380,14 +394,21 @@ Eigen::Vector3d ContactStep::localPoint(const ContactPoint& point, const SceneBo
 }
 
 void ContactStep::warmStart(SolverContact& c, const ContactPoint& point, const SceneBodies& bodies) const {
-  const WarmPoint probe{pairKey(point.a, point.b), Eigen::Vector3d::Zero(), 0.0, Eigen::Vector3d::Zero()};
+  const WarmPoint probe{pairKey(point.a, point.b), -1, Eigen::Vector3d::Zero(), 0.0, Eigen::Vector3d::Zero()};
   const auto range = std::equal_range(warm_.begin(), warm_.end(), probe);
-  const Eigen::Vector3d local = localPoint(point, bodies);
+  if (range.first == range.second) return;
   const WarmPoint* best = nullptr;
-  double best_distance = kWarmStartMatch;
-  for (auto it = range.first; it != range.second; ++it) {
-    const double distance = (it->local - local).norm();
-    if (distance < best_distance) best = &*it, best_distance = distance;
+  if (point.feature >= 0) {  // a half-space contact: the same corner of the same body
+    for (auto it = range.first; it != range.second && best == nullptr; ++it) {
+      if (it->feature == point.feature) best = &*it;
+    }
+  } else {
+    const Eigen::Vector3d local = localPoint(point, bodies);
+    double best_distance = kWarmStartMatch;
+    for (auto it = range.first; it != range.second; ++it) {
+      const double distance = (it->local - local).norm();
+      if (distance < best_distance) best = &*it, best_distance = distance;
+    }
   }
   if (best == nullptr) return;
   // The pair's order may differ from last step's: impulses are stored as acting on the pair's lower object.
@@ -399,8 +420,7 @@ void ContactStep::warmStart(SolverContact& c, const ContactPoint& point, const S
 void ContactStep::solveResting(SceneBodies& bodies, double h) {
   solver_contacts_.clear();
   solver_points_.clear();
-  solver_bodies_.clear();
-  solver_body_of_.clear();
+  startSolverLists();
   for (const ContactPoint& point : points_) {
     const bool touching = wasTouching(pairKey(point.a, point.b));
     if (point.distance > (touching ? settings_.penetration_slop : 0.0)) continue;
@@ -416,6 +436,7 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
   }
   if (solver_contacts_.empty()) {
     warm_.clear();
+    for (std::size_t s = 1; s < solver_bodies_.size(); ++s) solver_of_[solver_body_of_[s]] = kUnassigned;
     return;
   }
 
@@ -435,21 +456,22 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
   }
   projectPositions(solver_contacts_, solver_bodies_, settings_.position_iterations, settings_.penetration_slop,
                    settings_.position_correction);
-  for (std::size_t s = 0; s < solver_bodies_.size(); ++s) {
+  for (std::size_t s = 1; s < solver_bodies_.size(); ++s) {  // 0 is the environment
     const std::size_t k = solver_body_of_[s];
     State& state = bodies.states[colliders_[k]];
     state.P_W += solver_bodies_[s].dP;
     state.L_W += solver_bodies_[s].dL;
     state.p_WB += solver_bodies_[s].dx;
     rotate(state.q_WB, solver_bodies_[s].dtheta);
-    solver_of_[k] = kStatic;
+    solver_of_[k] = kUnassigned;
   }
   warm_next_.clear();
   for (std::size_t i = 0; i < solver_contacts_.size(); ++i) {
     const SolverContact& c = solver_contacts_[i];
     const ContactPoint& point = *solver_points_[i];
     const Eigen::Vector3d friction = c.friction_impulse.x() * c.t1 + c.friction_impulse.y() * c.t2;
-    warm_next_.push_back({pairKey(point.a, point.b), localPoint(point, bodies), c.normal_impulse,
+    warm_next_.push_back({pairKey(point.a, point.b), point.feature,
+                          point.feature >= 0 ? Eigen::Vector3d::Zero() : localPoint(point, bodies), c.normal_impulse,
                           (point.a < point.b ? 1.0 : -1.0) * friction});
     if (!recording_) continue;
     const double depth = std::max(0.0, -point.distance);

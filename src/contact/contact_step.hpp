@@ -68,6 +68,7 @@ class ContactStep {
   void findCandidates(SceneBodies& bodies, const std::vector<char>& running, double h);
   bool resolveImpact(SceneBodies& bodies, const Candidate& candidate, double h);
   double distanceAfter(SceneBodies& bodies, const Candidate& candidate, double tau, bool keep_states);
+  void startSolverLists();
   std::size_t solverIndex(const SceneBodies& bodies, std::size_t object);
   void addContact(const ContactPoint& point, const SceneBodies& bodies, bool resting);
   void solveResting(SceneBodies& bodies, double h);
@@ -89,7 +90,7 @@ class ContactStep {
   std::vector<int> engagement_;             // engaged pairs per colliding body
   std::vector<Candidate> candidates_;
   std::vector<SolverBody> solver_bodies_;
-  std::vector<std::size_t> solver_of_;      // colliding body → solver body, or kStatic
+  std::vector<std::size_t> solver_of_;      // colliding body → solver body, or kUnassigned
   std::vector<std::size_t> solver_body_of_; // solver body → colliding body
   std::vector<SolverContact> solver_contacts_;
   std::vector<const ContactPoint*> solver_points_;
@@ -99,6 +100,7 @@ class ContactStep {
   // Warm start: last step's impulses by pair and by where the point sits on the body (its own frame).
   struct WarmPoint {
     std::uint64_t key;
+    int feature;            // ≥ 0: matched by feature; otherwise by position on the body
     Eigen::Vector3d local;
     double normal_impulse;
     Eigen::Vector3d friction_impulse_W;
