@@ -14,6 +14,7 @@
 #include <iostream>
 #include <string>
 
+#include "contact_report.hpp"
 #include "measurements.hpp"
 #include "rigid_body_sim/integrators.hpp"
 
@@ -80,7 +81,9 @@ int main(int argc, char** argv) {
 
   if (options.substituted) std::cerr << "accuracy_report: methods substituted: the numbers are a mutation check\n";
   if (options.only_stability) {
-    const std::vector<StabilityRow> rows = runStabilitySuite(options.quick);
+    std::vector<StabilityRow> rows = runStabilitySuite(options.quick);
+    const std::vector<StabilityRow> contact_rows = runContactStability(options.quick);
+    rows.insert(rows.end(), contact_rows.begin(), contact_rows.end());
     writeStabilityCsv(options, rows);
     const std::pair<int, int> claims = countClaims(rows);
     std::cerr << "accuracy_report: wrote " << options.out << "/stability.csv; " << claims.second << " of "
@@ -97,9 +100,14 @@ int main(int argc, char** argv) {
   std::cerr << "  stiff and extreme suite\n";
   results.stability = runStabilitySuite(options.quick);
   results.stability.insert(results.stability.end(), long_rows.begin(), long_rows.end());
+  std::cerr << "  contact: closed forms, then the stiff and extreme contact cases\n";
+  results.contact = runContactWorkPrecision(options);
+  const std::vector<StabilityRow> contact_rows = runContactStability(options.quick);
+  results.stability.insert(results.stability.end(), contact_rows.begin(), contact_rows.end());
   writeStabilityCsv(options, results.stability);
   if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
     results.figures = drawFigures(options, results.scenes);
+    results.contact_figures = drawContactFigures(options, results.contact);
   } else {
     std::cerr << "accuracy_report: gnuplot not found: CSV and REPORT.md only, no figures\n";
   }

@@ -48,6 +48,17 @@ struct LongRunSummary {
   double drift;             // slope of dE/E against t over the second half [1/s]
 };
 
+/// One run of a closed-form contact scene (contact_report.hpp).
+struct ContactRow {
+  std::string scene;        ///< e.g. "bounce"
+  std::string metric;       ///< what `error` is, with its unit
+  std::string integrator;   ///< integrator name
+  std::string setting;      ///< the contact settings, e.g. "located, 20 iterations"
+  double dt;                ///< [s]
+  double error;             ///< against the closed form
+  double cpu_per_second;    ///< CPU time per simulated second [s]
+};
+
 struct Results {
   std::vector<Scene> scenes;
   SceneTable at_control_step;
@@ -55,7 +66,9 @@ struct Results {
   ControlTable control;
   std::map<std::string, LongRunSummary> long_run;
   std::vector<StabilityRow> stability;
+  std::vector<ContactRow> contact;
   bool figures = false;
+  bool contact_figures = false;
 };
 
 

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "contact_report.hpp"
 #include "measurements.hpp"
 #include "rigid_body_sim/integrators.hpp"
 #include "rigid_body_sim/number_format.hpp"
@@ -138,7 +139,9 @@ void writeStability(std::ostream& md, const Results& results, bool quick) {
         "(properties every method keeps by construction: |q| = 1 after its normalisation, world L without torque, "
         "a finite result, the energy bounds of a unit q) are checked apart and not counted as claims: "
      << invariants_held << " of " << invariants << " held.\n\n";
-  for (const auto& description : stabilityCaseDescriptions(quick)) {
+  std::vector<std::pair<std::string, std::string>> descriptions = stabilityCaseDescriptions(quick);
+  for (const auto& contact : contactCaseDescriptions(quick)) descriptions.push_back(contact);
+  for (const auto& description : descriptions) {
     md << "### " << description.first << "\n\n" << description.second << ".\n\n| integrator | metric | value | threshold | claimed | pass |\n|---|---|---|---|---|---|\n";
     for (const StabilityRow& row : results.stability) {
       if (row.case_name != description.first || row.invariant) continue;
@@ -278,6 +281,7 @@ void writeMarkdown(std::ostream& md, const Options& options, const Sweep& sweep,
   writeControlRate(md, results);
   writeLongRun(md, results, sweep);
   writeStability(md, results, options.quick);
+  writeContactSection(md, results.contact, results.contact_figures);
   writeRecommendations(md, results);
 }
 

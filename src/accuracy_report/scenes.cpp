@@ -45,9 +45,13 @@ std::map<IntegratorType, IntegratorType>& substitutions() {
 
 void substitute(IntegratorType claimed, IntegratorType run) { substitutions()[claimed] = run; }
 
-Integrator makeIntegrator(IntegratorType type, const IntegratorSettings& settings) {
+IntegratorType runType(IntegratorType type) {
   const auto found = substitutions().find(type);
-  return Integrator(found == substitutions().end() ? type : found->second, settings);
+  return found == substitutions().end() ? type : found->second;
+}
+
+Integrator makeIntegrator(IntegratorType type, const IntegratorSettings& settings) {
+  return Integrator(runType(type), settings);
 }
 
 Scene asymmetricScene(double duration) {

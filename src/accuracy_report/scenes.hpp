@@ -46,6 +46,9 @@ Scene torqueFreeScene(const std::string& name, const std::string& description, c
 /// must fail that method's claims (test_accuracy_report does it for every method that has a lower order).
 void substitute(rigid_body::IntegratorType claimed, rigid_body::IntegratorType run);
 
+/// The method a run of `type` uses: `type` itself unless substituted.
+rigid_body::IntegratorType runType(rigid_body::IntegratorType type);
+
 /// The integrator a run of `type` uses: `type` itself unless substituted.
 rigid_body::Integrator makeIntegrator(rigid_body::IntegratorType type,
                                       const rigid_body::IntegratorSettings& settings = rigid_body::IntegratorSettings());

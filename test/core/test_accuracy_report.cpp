@@ -6,7 +6,9 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -77,13 +79,13 @@ int AccuracyReport::exit_code_ = -1;
 TEST_F(AccuracyReport, WritesEveryFile) {
   ASSERT_EQ(exit_code_, 0);
   for (const char* name : {"REPORT.md", "work_precision.csv", "order.csv", "control_rate.csv", "error_growth.csv",
-                           "stability.csv"}) {
+                           "stability.csv", "contact.csv"}) {
     EXPECT_TRUE(exists(file(name))) << name;
   }
   // Figures when gnuplot is there (scripts/test.sh installs it).
   if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
     for (const char* name : {"order.png", "control_rate.png", "error_growth.png", "work_precision_dzhanibekov.png",
-                             "work_precision_asymmetric.png", "work_precision_ballistic.png"}) {
+                             "work_precision_asymmetric.png", "work_precision_ballistic.png", "contact_bounce.png"}) {
       EXPECT_TRUE(exists(file(name))) << name;
     }
   }
@@ -151,6 +153,30 @@ bool meets(double value, const std::string& threshold) {
   return op == "<=" ? value <= bound : op == ">=" ? value >= bound : value == bound;
 }
 
+// Contact: a located impact keeps rk4's free flight exact (the bounce heights to rounding), while an impact
+// resolved at the end of its step is O(h) off; and every closed-form contact scene was run.
+TEST_F(AccuracyReport, ContactSectionShowsWhatEventLocationBuys) {
+  const auto rows = readCsv(file("contact.csv"));
+  ASSERT_FALSE(rows.empty());
+  std::set<std::string> scenes;
+  double located = -1.0, at_step_end = -1.0;
+  for (const auto& row : rows) {
+    scenes.insert(row.at("scene"));
+    if (row.at("scene") != "bounce" || row.at("integrator") != "rk4" || std::stod(row.at("dt")) != 1e-3) continue;
+    if (row.at("setting") == "located, 20 iterations") located = std::stod(row.at("error"));
+    if (row.at("setting") == "at step end, 20 iterations") at_step_end = std::stod(row.at("error"));
+    EXPECT_GT(std::stod(row.at("cpu_per_simulated_second")), 0.0);
+  }
+  EXPECT_EQ(scenes, (std::set<std::string>{"bounce", "slide", "incline_slide", "rolling", "head_on", "rod_impact"}));
+  ASSERT_GE(located, 0.0);
+  ASSERT_GE(at_step_end, 0.0);
+  EXPECT_LE(located, 1e-6);
+  EXPECT_GE(at_step_end, 1e-4);  // the impact up to a step late: the rebound speed off by about g h
+  std::ifstream markdown(file("REPORT.md"));
+  const std::string text((std::istreambuf_iterator<char>(markdown)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("### Which contact settings when"), std::string::npos);
+}
+
 TEST_F(AccuracyReport, EveryClaimedThresholdIsMet) {
   const auto rows = readCsv(file("stability.csv"));
   ASSERT_FALSE(rows.empty());
@@ -173,7 +199,9 @@ TEST_F(AccuracyReport, EveryClaimedThresholdIsMet) {
   }
   EXPECT_GT(claims, 0);
   for (const char* name : {"thin_rod", "thin_rod_1e-4", "high_spin", "dzhanibekov_130s", "near_zero_omega",
-                           "scale_1e-9_1e9", "large_step_1s", "stiff_damping", "long_run"}) {
+                           "scale_1e-9_1e9", "large_step_1s", "stiff_damping", "long_run", "contact_stack_10",
+                           "contact_tunneling_1000_m_s", "contact_spin_100_rad_s", "contact_painleve",
+                           "contact_long_rest"}) {
     EXPECT_TRUE(cases.count(name)) << name;
   }
 }
