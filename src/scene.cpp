@@ -47,7 +47,7 @@ Scene::Scene(const std::vector<BodyDefinition>& bodies, IntegratorType integrato
       collider_of_[body] = colliders.size();
       colliders.push_back(body);
     }
-    contact_ = std::make_unique<contact::ContactStep>(contact, colliders, integrator);
+    contact_ = std::make_unique<contact::ContactStep>(contact, colliders, integrator, states_);
     contact_->start(states_);
     collider_running_.assign(colliders.size(), 1);
     collider_failed_.assign(colliders.size(), StepStatus::kOk);

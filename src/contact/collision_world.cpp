@@ -110,7 +110,9 @@ struct CollisionWorld::Impl {
     throw std::invalid_argument("unknown collision shape type");
   }
 
-  btCollisionObject* add(const CollisionShape& shape, bool in_environment, int id) {
+  // `X_WB`: a body's pose, set before the object enters the broad phase (an object added at the origin would
+  // pair with every other one there first: N² pairs for a large scene).
+  btCollisionObject* add(const CollisionShape& shape, bool in_environment, int id, const btTransform& X_WB) {
     if (shape.type == ShapeType::kPlane) {
       planes.push_back({shape.normal.normalized(), shape.offset, static_cast<std::size_t>(id)});
       shapes.push_back(nullptr);
@@ -126,6 +128,7 @@ struct CollisionWorld::Impl {
       if (shape.type != ShapeType::kPlane) object->setWorldTransform(toBt(shape.pose));
     } else {
       object->setActivationState(DISABLE_DEACTIVATION);
+      object->setWorldTransform(X_WB * toBt(shape.pose));
     }
     // Static objects never test each other: bodies are in the default group, the environment in the static.
     const int group = in_environment ? btBroadphaseProxy::StaticFilter : btBroadphaseProxy::DefaultFilter;
@@ -138,11 +141,12 @@ struct CollisionWorld::Impl {
 
 };
 
-CollisionWorld::CollisionWorld(const std::vector<CollisionShape>& environment, const std::vector<CollisionShape>& bodies)
+CollisionWorld::CollisionWorld(const std::vector<CollisionShape>& environment, const std::vector<CollisionShape>& bodies,
+                               const std::vector<Eigen::Isometry3d>& body_poses)
     : impl_(std::make_unique<Impl>()) {
   impl_->body_count = bodies.size();
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    impl_->add(bodies[i], false, static_cast<int>(i));
+    impl_->add(bodies[i], false, static_cast<int>(i), toBt(body_poses[i]));
     impl_->body_offsets.push_back(toBt(bodies[i].pose));
     impl_->body_shapes.push_back(bodies[i]);
     if (bodies[i].type == ShapeType::kMesh) {  // only the hull's vertices can touch a plane
@@ -155,9 +159,9 @@ CollisionWorld::CollisionWorld(const std::vector<CollisionShape>& environment, c
       }
     }
   }
-  impl_->shape_poses.assign(bodies.size(), Eigen::Isometry3d::Identity());
+  for (std::size_t i = 0; i < bodies.size(); ++i) impl_->shape_poses.push_back(body_poses[i] * bodies[i].pose);
   for (std::size_t i = 0; i < environment.size(); ++i) {
-    impl_->add(environment[i], true, static_cast<int>(bodies.size() + i));
+    impl_->add(environment[i], true, static_cast<int>(bodies.size() + i), btTransform::getIdentity());
   }
 }
 

@@ -35,8 +35,10 @@ struct SweepHit {
 
 class CollisionWorld {
  public:
-  /// `bodies[i]` is the shape of colliding body i (its pose is in the body frame).
-  CollisionWorld(const std::vector<CollisionShape>& environment, const std::vector<CollisionShape>& bodies);
+  /// `bodies[i]` is the shape of colliding body i (its pose is in the body frame), `body_poses[i]` where the
+  /// body starts (X_WB).
+  CollisionWorld(const std::vector<CollisionShape>& environment, const std::vector<CollisionShape>& bodies,
+                 const std::vector<Eigen::Isometry3d>& body_poses);
   ~CollisionWorld();
   CollisionWorld(const CollisionWorld&) = delete;
   CollisionWorld& operator=(const CollisionWorld&) = delete;

@@ -57,10 +57,17 @@ void rotate(Eigen::Quaterniond& q, const Eigen::Vector3d& rotation_W) {
 }  // namespace
 
 ContactStep::ContactStep(const ContactSetup& setup, const std::vector<std::size_t>& colliders,
-                         IntegratorType integrator)
+                         IntegratorType integrator, const std::vector<State>& states)
     : colliders_(colliders), settings_(setup.settings), integrator_type_(integrator) {
   std::vector<CollisionShape> shapes;
+  std::vector<Eigen::Isometry3d> poses;
   for (std::size_t body : colliders) {
+    Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
+    if (states[body].p_WB.norm() <= kContactRange) {  // else out of the contact world: placeAll keeps it out
+      X_WB.linear() = states[body].q_WB.toRotationMatrix();
+      X_WB.translation() = states[body].p_WB;
+    }
+    poses.push_back(X_WB);
     shapes.push_back(*setup.bodies[body]);
     materials_.push_back(shapes.back().material);
     names_.push_back(shapes.back().name.empty() ? "body " + std::to_string(body) : shapes.back().name);
@@ -71,7 +78,7 @@ ContactStep::ContactStep(const ContactSetup& setup, const std::vector<std::size_
     names_.push_back(setup.environment[i].name.empty() ? "environment shape " + std::to_string(i)
                                                        : setup.environment[i].name);
   }
-  world_ = std::make_unique<CollisionWorld>(setup.environment, shapes);
+  world_ = std::make_unique<CollisionWorld>(setup.environment, shapes, poses);
   const std::size_t n = colliders.size();
   start_.resize(n);
   engagement_.assign(n, 0);

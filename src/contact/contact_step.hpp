@@ -29,8 +29,10 @@ struct SceneBodies {
 
 class ContactStep {
  public:
-  /// `colliders[k]` is the scene index of the k-th colliding body; setup.bodies[that index] its shape.
-  ContactStep(const ContactSetup& setup, const std::vector<std::size_t>& colliders, IntegratorType integrator);
+  /// `colliders[k]` is the scene index of the k-th colliding body; setup.bodies[that index] its shape;
+  /// `states` the scene's states (the bodies enter the broad phase where they are).
+  ContactStep(const ContactSetup& setup, const std::vector<std::size_t>& colliders, IntegratorType integrator,
+              const std::vector<State>& states);
 
   /// Throws std::invalid_argument naming both sides when a body starts inside another or the environment
   /// deeper than the penetration slop; otherwise takes the initial touching pairs as resting.

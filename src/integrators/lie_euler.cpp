@@ -16,24 +16,34 @@ namespace {
 // R_WB, if not null, is R(q) of s already formed by the caller: Rᵀ L is then one matrix–vector product.
 void cayleyFreeRotation(const MassProperties& mass, double h, const Eigen::Matrix3d* R_WB, State& s) {
   const bool body_axes = mass.principalAxesAreBodyAxes();
-  const Eigen::Quaterniond& q_BP = mass.principalAxesRotation();
-  const Eigen::Quaterniond q_WP = body_axes ? s.q_WB : s.q_WB * q_BP;
-  // The body momentum in principal axes.
-  Eigen::Vector3d m = body_axes && R_WB ? Eigen::Vector3d(R_WB->transpose() * s.L_W) : q_WP.conjugate() * s.L_W;
-  const Eigen::Vector3d& inverse_I = mass.inversePrincipalMoments();
-  Eigen::Quaterniond r(1.0, 0.0, 0.0, 0.0);  // the turn in principal axes, unnormalised (one sqrt at the end)
-  for (int a = 0; a < 3; ++a) {
-    const double t = (0.5 * h * inverse_I(a)) * m(a);
-    Eigen::Quaterniond turn(1.0, 0.0, 0.0, 0.0);
-    turn.coeffs()(a) = t;  // (x, y, z, w) storage: the vector part along e_a
-    r = r * turn;
-    const int j = (a + 1) % 3, k = (a + 2) % 3;
-    const double d = 1.0 / (1.0 + t * t), c = (1.0 - t * t) * d, sn = 2.0 * t * d;
-    const double mj = m(j), mk = m(k);
-    m(j) = c * mj + sn * mk;
-    m(k) = -sn * mj + c * mk;
+  const Eigen::Matrix3d& R_BP = mass.principalAxes();
+  // The body momentum in principal axes, m = R_BPᵀ R_WBᵀ L (matrix–vector products when R is at hand).
+  Eigen::Vector3d m;
+  if (R_WB != nullptr) {
+    const Eigen::Vector3d m_B = R_WB->transpose() * s.L_W;
+    m = body_axes ? m_B : Eigen::Vector3d(R_BP.transpose() * m_B);
+  } else {
+    const Eigen::Vector3d m_B = s.q_WB.conjugate() * s.L_W;
+    m = body_axes ? m_B : Eigen::Vector3d(R_BP.transpose() * m_B);
   }
-  s.q_WB = body_axes ? q_WP * r : q_WP * r * q_BP.conjugate();  // normalised by the caller
+  // Turn a about e₀ by t₀ = a₀ m₀ (a_i = h/(2 I_i)); it turns m by the rational rotation of D₀ = 1 + t₀²,
+  // so t₁ = a₁ N₁/D₀; turn b moves m₂ by the rotation of 1 + t₁², so t₂ = C/E. The three turns' product
+  // (1 + t₀ i)(1 + t₁ j)(1 + t₂ k) = (1 − t₀t₁t₂, t₀ + t₁t₂, t₁ − t₀t₂, t₂ + t₀t₁) (ik = −j, jk = i, k² = −1),
+  // times the common denominator D₀ E, needs no division at all: the caller's normalisation is the one
+  // square root and division of the whole rotation.
+  const Eigen::Vector3d a = (0.5 * h) * mass.inversePrincipalMoments();
+  const double t0 = a(0) * m(0);
+  const double D0 = 1.0 + t0 * t0, c0 = 1.0 - t0 * t0, s0 = 2.0 * t0;
+  const double N1 = c0 * m(1) + s0 * m(2);   // D₀ m₁ after turn a
+  const double N2 = -s0 * m(1) + c0 * m(2);  // D₀ m₂ after turn a
+  const double A = a(1) * N1;                // t₁ = A/D₀
+  const double D0sq = D0 * D0, Asq = A * A;
+  const double E = D0 * (D0sq + Asq);        // t₂ = C/E
+  const double C = a(2) * ((D0sq - Asq) * N2 + 2.0 * A * D0sq * m(0));
+  const double w = D0 * E - t0 * A * C;
+  const Eigen::Vector3d r_P(t0 * D0 * E + A * C, A * E - t0 * D0 * C, C * D0 + t0 * A * E);
+  const Eigen::Vector3d r_B = body_axes ? r_P : Eigen::Vector3d(R_BP * r_P);
+  s.q_WB = s.q_WB * Eigen::Quaterniond(w, r_B.x(), r_B.y(), r_B.z());
 }
 
 }  // namespace
