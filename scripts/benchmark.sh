@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds (Release) and runs the benchmarks: ns per step per integrator and case (every term against the
-# assembled ones, median of 5), and a scene of N = 1 … 10 000 bodies (ns per body and step, median of 3);
-# prints both as the tables of docs/performance.md.
+# assembled ones, median of 5), a scene of N = 1 … 10 000 bodies (ns per body and step, median of 3) and
+# contact (bodies resting, stacked, in the broad phase only); prints them as the tables of docs/performance.md.
 # Extra arguments go to Google Benchmark, e.g. --benchmark_filter=general
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
@@ -17,6 +17,10 @@ results=$(mktemp -d)
   --benchmark_min_time=0.2 --benchmark_out="$results/steps.json" --benchmark_out_format=json "$@"
 "$bench/scene_benchmark" --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
   --benchmark_min_time=0.2 --benchmark_out="$results/scene.json" --benchmark_out_format=json
+echo
+echo "contact (us per body and step, median of 3):"
+"$bench/contact_benchmark" --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
+  --benchmark_min_time=0.2 2>/dev/null | awk '/_median/ {print "  " $1 "  " $NF}'
 echo
 echo "ns per step, every term against the assembled ones (median):"
 /usr/bin/python3 "$PACKAGE_DIR/scripts/benchmark_table.py" "$results/steps.json" "$results/scene.json"

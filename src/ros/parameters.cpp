@@ -51,7 +51,7 @@ const std::set<std::string> kSceneNames = {
     "rate", "dt", "integrator", "world_frame", "gravity", "bodies", "wrench_timeout", "max_substeps",
     "max_body_steps_per_tick", "max_body_steps_per_request", "publish_tf",
     "publish", "abs_tolerance", "rel_tolerance", "max_force", "max_torque", "max_energy_growth", "lockstep",
-    "real_time_factor", "start_paused", "noise", "environment", "contact"};
+    "real_time_factor", "start_paused", "noise", "environment", "contact", "marker_rate"};
 const std::set<std::string> kPublishNames = {"tf", "odom", "state", "applied_wrench", "body_services",
                                              "per_body_topics"};
 const std::set<std::string> kNoiseNames = {"position_stddev", "orientation_stddev", "linear_velocity_stddev",
@@ -64,9 +64,11 @@ rigid_body::MassProperties readMeshMassProperties(const XmlRpcValue& params, Bod
   if (uri.empty()) fail("mesh", find(params, "mesh") ? *find(params, "mesh") : XmlRpcValue(std::string()),
                         "must be set for shape mesh: a file path or package:// URI (.stl, .obj)");
   config.mesh_path = resolveMeshUri(uri);
+  config.mesh_uri = uri;
   rigid_body::MeshMassOptions options;
   const double scale = readNumber(params, "scale", 1.0, [](double s) { return s > 0.0; },
                                   "must be a finite number > 0 (mesh units to metres)");
+  config.mesh_scale = scale;
   const bool has_mass = find(params, "mass") != nullptr, has_density = find(params, "density") != nullptr;
   if (has_mass && has_density) fail("density", *find(params, "density"), "give ~mass or ~density, not both");
   if (!has_mass && !has_density) {
@@ -341,6 +343,11 @@ void readOutputs(const XmlRpcValue& params, NodeConfig& config) {
   config.real_time_factor = readNumber(params, "real_time_factor", 1.0, [](double f) { return f >= 0.0; },
                                        "must be a finite number >= 0 (0: as fast as possible)");
   config.start_paused = readBool(params, "start_paused", false);
+  const double default_marker_rate = std::min(20.0, config.rate);
+  std::ostringstream marker_allowed;
+  marker_allowed << "must be a finite number in (0, rate = " << config.rate << "] [Hz]";
+  config.marker_rate = readNumber(params, "marker_rate", default_marker_rate,
+                                  [&](double r) { return r > 0.0 && r <= config.rate; }, marker_allowed.str());
 }
 
 NoiseConfig readNoise(const XmlRpcValue& params) {

@@ -51,6 +51,7 @@ SimulatorNode::SimulatorNode(const ros::NodeHandle& nh, const ros::NodeHandle& p
              rigid_body::StepAssembly::kLeaveOut, config_.contactSetup()),
       wrench_input_(nh_, config_, world_, [this] { return now(); }),
       outputs_(nh_, config_),
+      markers_(nh_, config_),
       diagnostics_(nh_, private_nh_, config_, world_, wrench_input_, outputs_),
       services_(nh_, config_, world_, wrench_input_, [this] { return now(); },
                 [this] {
@@ -114,6 +115,7 @@ void SimulatorNode::update(const ros::Time& now) {
 
 void SimulatorNode::publish() {
   outputs_.publish(world_);
+  markers_.publish(world_);
   diagnostics_.tick(world_.stamp());
 }
 

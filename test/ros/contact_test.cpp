@@ -8,6 +8,8 @@
 #include <set>
 #include <string>
 
+#include <visualization_msgs/MarkerArray.h>
+
 #include "rigid_body_sim/Contacts.h"
 #include "rigid_body_sim/RigidBodyState.h"
 #include "test_helpers.hpp"
@@ -95,6 +97,44 @@ TEST(Contact, ASceneWithoutCollidersHasNoContactsTopicAndNoContactTerm) {
     return Diagnostics::value(s, "step terms").find("contact (box") != std::string::npos &&
            !Diagnostics::value(s, "contact points").empty();
   }));
+}
+
+TEST(Contact, MarkersShowTheBodyTheGroundAndTheContactsAtTheMarkerRate) {
+  ros::NodeHandle nh;
+  Recorder<visualization_msgs::MarkerArray> markers(nh, "landing/markers");
+  Recorder<rigid_body_sim::RigidBodyState> state(nh, "landing/state");
+  // At rest, so that the contact points are there.
+  ASSERT_TRUE(waitUntil([&] { return !state.messages.empty() && speed(state.messages.back()) < 1e-4; }, 30.0));
+  const std::size_t seen = markers.messages.size();
+  ASSERT_TRUE(markers.waitForCount(seen + 3));
+  const visualization_msgs::MarkerArray& last = markers.messages.back();
+  const visualization_msgs::Marker* box = nullptr;
+  const visualization_msgs::Marker* ground = nullptr;
+  const visualization_msgs::Marker* points = nullptr;
+  for (const visualization_msgs::Marker& m : last.markers) {
+    if (m.ns == "bodies" && m.id == 0) box = &m;
+    if (m.ns == "environment" && m.id == 0) ground = &m;
+    if (m.ns == "contacts" && m.id == 0) points = &m;
+  }
+  ASSERT_TRUE(box && ground && points);
+  // The box in its own frame, with its size: it moves with tf.
+  EXPECT_EQ(box->header.frame_id, "base_link");
+  EXPECT_EQ(box->type, visualization_msgs::Marker::CUBE);
+  EXPECT_EQ(Eigen::Vector3d(box->scale.x, box->scale.y, box->scale.z), kBoxSize);
+  // The ground plane: a thin slab in the world frame whose top face is z = 0.
+  EXPECT_EQ(ground->header.frame_id, "world");
+  EXPECT_NEAR(ground->pose.position.z + 0.5 * ground->scale.z, 0.0, 1e-12);
+  // The contact points on the ground, as many as the state counts.
+  EXPECT_EQ(points->points.size(), state.messages.back().contacts);
+  for (const geometry_msgs::Point& p : points->points) EXPECT_NEAR(p.z, 0.0, 1e-3);
+  // Stable ids, and the default marker rate of 20 Hz in simulated time: 0.05 s between arrays.
+  const visualization_msgs::MarkerArray& before = markers.messages[markers.messages.size() - 2];
+  ASSERT_EQ(before.markers.size(), last.markers.size());
+  for (std::size_t i = 0; i < last.markers.size(); ++i) {
+    EXPECT_EQ(before.markers[i].ns, last.markers[i].ns);
+    EXPECT_EQ(before.markers[i].id, last.markers[i].id);
+  }
+  EXPECT_NEAR((last.markers[0].header.stamp - before.markers[0].header.stamp).toSec(), 0.05, 1e-9);
 }
 
 int main(int argc, char** argv) {

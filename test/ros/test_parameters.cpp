@@ -140,6 +140,7 @@ TEST(Parameters, EachInvalidValueNamesTheParameterAndTheRule) {
       {"rel_tolerance", XmlRpcValue(2), "parameter ~rel_tolerance = 2: must be a finite number in [1e-15, 1]"},
       {"world_frame", XmlRpcValue(std::string("/world")), "parameter ~world_frame = '/world': must be a non-empty tf2 frame id"},
       {"body_frame", XmlRpcValue(std::string("world")), "parameter ~body_frame = 'world': must differ from ~world_frame"},
+      {"marker_rate", XmlRpcValue(500.0), "parameter ~marker_rate = 500: must be a finite number in (0, rate = 100] [Hz]"},
   };
   for (const Case& c : cases) {
     XmlRpcValue params;

@@ -57,6 +57,8 @@ struct BodyConfig {
   bool wrench_input = true;  ///< subscribes NAME/wrench (and takes apply_wrench); false: no input term at all
   // shape: mesh
   std::string mesh_path;             ///< the resolved file of mesh
+  std::string mesh_uri;              ///< mesh as given (a package:// URI or a path), for rviz
+  double mesh_scale = 1.0;           ///< scale: mesh units to metres
   std::string mesh_frame;            ///< if set, a static tf body_frame → mesh_frame is published
   Eigen::Isometry3d X_MB = Eigen::Isometry3d::Identity();  ///< pose of the body frame in the mesh frame
   std::vector<std::string> mesh_warnings;  ///< repairs made to the mesh, for the start-up log
@@ -87,6 +89,7 @@ struct PublishConfig {
 /// parameter table.
 struct NodeConfig {
   double rate = 100.0;  ///< timer and publish rate [Hz]
+  double marker_rate = 20.0;  ///< rviz markers' rate [Hz], at most rate (published only while subscribed)
   double dt = 0.001;    ///< fixed physics step [s]
   rigid_body::IntegratorType integrator = rigid_body::IntegratorType::kRk4;
   rigid_body::IntegratorSettings integrator_settings;  ///< abs_tolerance, rel_tolerance (dopri5)

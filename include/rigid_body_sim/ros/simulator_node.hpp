@@ -12,6 +12,7 @@
 
 #include "rigid_body_sim/ros/control_services.hpp"
 #include "rigid_body_sim/ros/node_diagnostics.hpp"
+#include "rigid_body_sim/ros/markers.hpp"
 #include "rigid_body_sim/ros/outputs.hpp"
 #include "rigid_body_sim/ros/parameters.hpp"
 #include "rigid_body_sim/ros/wrench_input.hpp"
@@ -59,6 +60,7 @@ class SimulatorNode {
   rigid_body::World world_;
   WrenchInput wrench_input_;
   Outputs outputs_;
+  Markers markers_;
   NodeDiagnostics diagnostics_;
   ControlServices services_;
   ros::Timer timer_;
