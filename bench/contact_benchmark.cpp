@@ -91,20 +91,12 @@ void run(benchmark::State& bench, Scene& scene) {
   bench.counters["bodies"] = static_cast<double>(scene.bodyCount());
 }
 
-void restingRk4(benchmark::State& bench) {
-  Scene scene = boxes(static_cast<std::size_t>(bench.range(0)), 1, IntegratorType::kRk4);
+void resting(benchmark::State& bench, IntegratorType type) {
+  Scene scene = boxes(static_cast<std::size_t>(bench.range(0)), 1, type);
   run(bench, scene);
 }
-void restingSemiImplicit(benchmark::State& bench) {
-  Scene scene = boxes(static_cast<std::size_t>(bench.range(0)), 1, IntegratorType::kSemiImplicitEuler);
-  run(bench, scene);
-}
-void stacksRk4(benchmark::State& bench) {
-  Scene scene = boxes(static_cast<std::size_t>(bench.range(0)), 10, IntegratorType::kRk4);
-  run(bench, scene);
-}
-void stacksSemiImplicit(benchmark::State& bench) {
-  Scene scene = boxes(static_cast<std::size_t>(bench.range(0)), 10, IntegratorType::kSemiImplicitEuler);
+void stacks(benchmark::State& bench, IntegratorType type) {
+  Scene scene = boxes(static_cast<std::size_t>(bench.range(0)), 10, type);
   run(bench, scene);
 }
 void broadPhaseOnly(benchmark::State& bench) {
@@ -114,10 +106,12 @@ void broadPhaseOnly(benchmark::State& bench) {
 
 }  // namespace
 
-BENCHMARK(restingRk4)->Arg(1)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
-BENCHMARK(restingSemiImplicit)->Arg(1)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
-BENCHMARK(stacksRk4)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
-BENCHMARK(stacksSemiImplicit)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(resting, rk4, IntegratorType::kRk4)->Arg(1)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(resting, semi_implicit_euler, IntegratorType::kSemiImplicitEuler)
+    ->Arg(1)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(stacks, rk4, IntegratorType::kRk4)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(stacks, semi_implicit_euler, IntegratorType::kSemiImplicitEuler)
+    ->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(broadPhaseOnly)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_MAIN();

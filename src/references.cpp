@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "rigid_body_sim/kinematics.hpp"
 #include "rigid_body_sim/rotation.hpp"
 
 namespace rigid_body {
@@ -209,6 +210,34 @@ State torqueFreeStart(const Eigen::Vector3d& m0_B, const Eigen::Quaterniond& q0)
   state.q_WB = q0;
   state.L_W = q0 * m0_B;
   return state;
+}
+
+CollisionShape groundPlane(const Eigen::Vector3d& normal, double friction, double restitution, double offset) {
+  CollisionShape shape;
+  shape.type = ShapeType::kPlane;
+  shape.name = "ground";
+  shape.normal = normal.normalized();
+  shape.offset = offset;
+  shape.material = {restitution, friction};
+  return shape;
+}
+
+CollisionShape collisionShape(ShapeType type, const Eigen::Vector3d& size, double friction, double restitution) {
+  CollisionShape shape;
+  shape.type = type;
+  shape.size = size;
+  shape.material = {restitution, friction};
+  return shape;
+}
+
+BodyDefinition contactBody(const MassProperties& mass, const Eigen::Vector3d& p_WB, const Eigen::Quaterniond& q_WB,
+                           const Eigen::Vector3d& v_WB_W, const Eigen::Vector3d& w_WB_B, const Eigen::Vector3d& gravity_W) {
+  BodyDefinition body;
+  body.model.mass = mass;
+  body.model.forces.gravity_W = gravity_W;
+  body.initial = stateFromVelocities(mass, p_WB, q_WB, v_WB_W, w_WB_B);
+  body.takes_input = false;
+  return body;
 }
 
 }  // namespace reference

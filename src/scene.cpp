@@ -198,6 +198,11 @@ void Scene::reset() {
   if (contact_) contact_->restart(states_);
 }
 
+void Scene::setForceModel(std::size_t body, const ForceModel& forces) {
+  models_[body].forces = forces;
+  assemble(body);
+}
+
 bool Scene::setState(std::size_t body, const State& state) {
   if (!isFinite(state)) return false;
   states_[body] = state;

@@ -306,6 +306,12 @@ void World::apply(const Command& command, UpdateResult* result) {
     case CommandKind::kUnpause:
       paused_ = false;
       return;
+    case CommandKind::kSetForces:
+      scene_.setForceModel(command.body, command.forces);
+      return;
+    case CommandKind::kSetWrenchTimeout:
+      settings_.wrench_timeout = command.duration;
+      return;
   }
   refreshInput(command.body);
 }
@@ -396,6 +402,24 @@ CommandReply World::setState(std::size_t body, const State& state, Nanoseconds a
   Command replace = command(CommandKind::kSetState, body, arrival);
   replace.state = state;
   return submit(replace);
+}
+
+CommandReply World::setForceModel(std::size_t body, const ForceModel& forces, Nanoseconds arrival) {
+  if (body >= scene_.bodyCount()) return {false, "refused: no such body"};
+  if (!forces.gravity_W.allFinite() || !(forces.linear_damping >= 0.0) || !std::isfinite(forces.linear_damping) ||
+      !(forces.angular_damping >= 0.0) || !std::isfinite(forces.angular_damping)) {
+    return {false, "refused: gravity must be finite and the dampings finite and >= 0"};
+  }
+  Command change = command(CommandKind::kSetForces, body, arrival);
+  change.forces = forces;
+  return submit(change);
+}
+
+CommandReply World::setWrenchTimeout(double seconds, Nanoseconds arrival) {
+  if (!(seconds >= 0.0) || !std::isfinite(seconds)) return {false, "refused: wrench_timeout must be finite and >= 0"};
+  Command change = command(CommandKind::kSetWrenchTimeout, 0, arrival);
+  change.duration = seconds;
+  return submit(change);
 }
 
 CommandReply World::pause(Nanoseconds arrival) { return submit(command(CommandKind::kPause, 0, arrival)); }

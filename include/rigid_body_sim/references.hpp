@@ -8,8 +8,10 @@
 #include <utility>
 #include <vector>
 
+#include "rigid_body_sim/collision_shape.hpp"
 #include "rigid_body_sim/dynamics.hpp"
 #include "rigid_body_sim/mass_properties.hpp"
+#include "rigid_body_sim/scene.hpp"
 #include "rigid_body_sim/state.hpp"
 
 namespace rigid_body {
@@ -115,6 +117,18 @@ Model principalBody(const Eigen::Vector3d& moments, double mass = 1.0, InertiaCh
 
 /// At the origin, at rest, turned by q0 (testOrientation() by default), with body angular momentum m0_B.
 State torqueFreeStart(const Eigen::Vector3d& m0_B, const Eigen::Quaterniond& q0 = testOrientation());
+
+// The building blocks of the contact scenes (docs/references.md §4).
+
+/// The half-space n·x ≤ offset named "ground" with friction μ and restitution e.
+CollisionShape groundPlane(const Eigen::Vector3d& normal, double friction, double restitution = 0.0, double offset = 0.0);
+
+/// A collision shape of `type` and `size` (see ShapeType) with friction μ and restitution e.
+CollisionShape collisionShape(ShapeType type, const Eigen::Vector3d& size, double friction, double restitution);
+
+/// A body without wrench input at p_WB, turned by q_WB, moving at v_WB_W and turning at w_WB_B, under gravity.
+BodyDefinition contactBody(const MassProperties& mass, const Eigen::Vector3d& p_WB, const Eigen::Quaterniond& q_WB,
+                           const Eigen::Vector3d& v_WB_W, const Eigen::Vector3d& w_WB_B, const Eigen::Vector3d& gravity_W);
 
 }  // namespace reference
 }  // namespace rigid_body

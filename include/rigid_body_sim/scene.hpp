@@ -32,7 +32,7 @@ const char* divergenceName(Divergence divergence);
 
 /// One body as a scene declares it.
 struct BodyDefinition {
-  Model model;               ///< mass properties and force models, constant for the scene's life
+  Model model;               ///< mass properties (constant) and force models (changed only by setForceModel)
   State initial;             ///< the state at start-up and after reset
   bool takes_input = true;   ///< the body has a wrench input (false: no input term, setInput refuses a wrench)
 };
@@ -90,6 +90,8 @@ class Scene {
   /// Every body back to its initial state (and terms) with no input, divergences cleared, integrator memory
   /// dropped.
   void reset();
+  /// Replaces a body's force models (a live setting); its terms are assembled again.
+  void setForceModel(std::size_t body, const ForceModel& forces);
   /// Replaces a body's state if it is finite (returns whether it was). Its terms are assembled again: a
   /// state with spin gives a body rotation it did not need before.
   bool setState(std::size_t body, const State& state);
@@ -138,7 +140,7 @@ class Scene {
   void stepColliders(std::int64_t steps, SceneStepResult& result);
   void assemble(std::size_t body);
 
-  // The hot arrays, one entry per body. models_ never changes after construction.
+  // The hot arrays, one entry per body. models_ changes only by setForceModel (between steps).
   std::vector<Model> models_;
   std::vector<StepTerms> terms_;
   std::vector<State> states_;

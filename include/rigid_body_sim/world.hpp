@@ -127,6 +127,11 @@ class World {
   CommandReply step(std::int64_t steps, Nanoseconds now);
   /// Lockstep only: clock back to step 0 at the start time, every body reset, nothing waiting.
   CommandReply rewind();
+  /// Live settings, from the step of their arrival: a body's force models (damping, gravity; its step terms
+  /// are assembled again, so turning gravity on adds the gravity term and off removes it), and the timeout of
+  /// topic wrenches arriving from then on. Refused for non-finite or negative values.
+  CommandReply setForceModel(std::size_t body, const ForceModel& forces, Nanoseconds arrival);
+  CommandReply setWrenchTimeout(double seconds, Nanoseconds arrival);
 
   // ----- queries -----
   const Scene& scene() const { return scene_; }
@@ -167,7 +172,9 @@ class World {
     bool scheduled = false;  // listed in scheduled_ (a flag, so that listing a body costs O(1))
     std::vector<TimedWrench> timed;
   };
-  enum class CommandKind { kTopicWrench, kTimedWrench, kClearWrenches, kReset, kSetState, kPause, kUnpause };
+  enum class CommandKind {
+    kTopicWrench, kTimedWrench, kClearWrenches, kReset, kSetState, kPause, kUnpause, kSetForces, kSetWrenchTimeout
+  };
   struct Command {
     CommandKind kind = CommandKind::kReset;
     std::size_t body = 0;
@@ -176,8 +183,9 @@ class World {
     bool has_point = false;  // wrench.world.torque is about p_WQ, not the centre of mass
     Eigen::Vector3d p_WQ = Eigen::Vector3d::Zero();
     Nanoseconds start = 0;
-    double duration = 0.0;
+    double duration = 0.0;  // kTimedWrench: its duration; kSetWrenchTimeout: the timeout [s]
     State state;
+    ForceModel forces;
   };
   static constexpr std::int64_t kForever = std::numeric_limits<std::int64_t>::max();
 

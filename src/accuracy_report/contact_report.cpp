@@ -10,6 +10,7 @@
 
 #include "rigid_body_sim/kinematics.hpp"
 #include "rigid_body_sim/number_format.hpp"
+#include "rigid_body_sim/references.hpp"
 #include "rigid_body_sim/scene.hpp"
 #include "scenes.hpp"
 
@@ -53,30 +54,16 @@ double cpuSeconds() {
 }
 
 CollisionShape shape(ShapeType type, const Eigen::Vector3d& size, double friction, double restitution) {
-  CollisionShape s;
-  s.type = type;
-  s.size = size;
-  s.material = {restitution, friction};
-  return s;
+  return rigid_body::reference::collisionShape(type, size, friction, restitution);
 }
 
 CollisionShape plane(const Eigen::Vector3d& normal, double friction) {
-  CollisionShape s;
-  s.type = ShapeType::kPlane;
-  s.name = "ground";
-  s.normal = normal.normalized();
-  s.material = {0.0, friction};
-  return s;
+  return rigid_body::reference::groundPlane(normal, friction);
 }
 
 BodyDefinition body(const MassProperties& mass, const Eigen::Vector3d& p, const Eigen::Quaterniond& q,
                     const Eigen::Vector3d& v, const Eigen::Vector3d& w_B, const Eigen::Vector3d& gravity) {
-  BodyDefinition definition;
-  definition.model.mass = mass;
-  definition.model.forces.gravity_W = gravity;
-  definition.initial = rigid_body::stateFromVelocities(mass, p, q, v, w_B);
-  definition.takes_input = false;
-  return definition;
+  return rigid_body::reference::contactBody(mass, p, q, v, w_B, gravity);
 }
 
 rigid_body::Scene makeScene(const std::vector<BodyDefinition>& bodies, ContactSetup setup, IntegratorType type,

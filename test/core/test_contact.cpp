@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "rigid_body_sim/kinematics.hpp"
+#include "rigid_body_sim/references.hpp"
 #include "rigid_body_sim/scene.hpp"
 
 using namespace rigid_body;
@@ -18,32 +19,20 @@ namespace {
 constexpr double kG = 9.81;
 constexpr double kPi = 3.14159265358979323846;
 
+using reference::collisionShape;
+using reference::groundPlane;
+
 CollisionShape plane(const Eigen::Vector3d& normal, double offset, double friction, double restitution = 0.0) {
-  CollisionShape shape;
-  shape.type = ShapeType::kPlane;
-  shape.name = "ground";
-  shape.normal = normal.normalized();
-  shape.offset = offset;
-  shape.material = {restitution, friction};
-  return shape;
+  return groundPlane(normal, friction, restitution, offset);
 }
 
 CollisionShape shapeOf(ShapeType type, const Eigen::Vector3d& size, double friction, double restitution) {
-  CollisionShape shape;
-  shape.type = type;
-  shape.size = size;
-  shape.material = {restitution, friction};
-  return shape;
+  return collisionShape(type, size, friction, restitution);
 }
 
 BodyDefinition body(const MassProperties& mass, const Eigen::Vector3d& p, const Eigen::Quaterniond& q,
                     const Eigen::Vector3d& v, const Eigen::Vector3d& gravity) {
-  BodyDefinition definition;
-  definition.model.mass = mass;
-  definition.model.forces.gravity_W = gravity;
-  definition.initial = stateFromVelocities(mass, p, q, v, Eigen::Vector3d::Zero());
-  definition.takes_input = false;
-  return definition;
+  return reference::contactBody(mass, p, q, v, Eigen::Vector3d::Zero(), gravity);
 }
 
 const Eigen::Vector3d kDown(0.0, 0.0, -kG);

@@ -12,6 +12,7 @@
 
 #include "rigid_body_sim/ros/control_services.hpp"
 #include "rigid_body_sim/ros/node_diagnostics.hpp"
+#include "rigid_body_sim/ros/live_parameters.hpp"
 #include "rigid_body_sim/ros/markers.hpp"
 #include "rigid_body_sim/ros/outputs.hpp"
 #include "rigid_body_sim/ros/parameters.hpp"
@@ -63,6 +64,7 @@ class SimulatorNode {
   Markers markers_;
   NodeDiagnostics diagnostics_;
   ControlServices services_;
+  LiveParameters live_;
   ros::Timer timer_;
 };
 

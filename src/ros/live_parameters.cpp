@@ -1,0 +1,75 @@
+#include "rigid_body_sim/ros/live_parameters.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace rigid_body_ros {
+
+namespace {
+
+// dynamic_reconfigure has no "unset": a limit of 0 means no limit, as an unset ~max_force does.
+double limitFrom(double value) { return value > 0.0 ? value : std::numeric_limits<double>::infinity(); }
+double limitTo(double value) { return std::isfinite(value) ? value : 0.0; }
+
+}  // namespace
+
+rigid_body_sim::RigidBodyConfig LiveParameters::fromNodeConfig(const NodeConfig& config) {
+  rigid_body_sim::RigidBodyConfig live;
+  // A scene's bodies may have dampings of their own: the live value starts at the first body's.
+  live.linear_damping = config.bodies.front().model.forces.linear_damping;
+  live.angular_damping = config.bodies.front().model.forces.angular_damping;
+  live.gravity_x = config.gravity_W.x();
+  live.gravity_y = config.gravity_W.y();
+  live.gravity_z = config.gravity_W.z();
+  live.wrench_timeout = config.wrench_timeout;
+  live.max_force = limitTo(config.wrench_limits.max_force);
+  live.max_torque = limitTo(config.wrench_limits.max_torque);
+  live.real_time_factor = config.real_time_factor;
+  live.marker_rate = config.marker_rate;
+  return live;
+}
+
+LiveParameters::LiveParameters(const ros::NodeHandle& private_nh, NodeConfig& config, rigid_body::World& world,
+                               std::function<rigid_body::Nanoseconds()> now)
+    : config_(config), world_(world), now_(std::move(now)), current_(fromNodeConfig(config)) {
+  server_ = std::make_unique<dynamic_reconfigure::Server<rigid_body_sim::RigidBodyConfig>>(private_nh);
+  // The server starts from the node's values (not the .cfg defaults), so the first call changes nothing.
+  server_->updateConfig(current_);
+  server_->setCallback([this](rigid_body_sim::RigidBodyConfig& requested, uint32_t level) { onChange(requested, level); });
+}
+
+void LiveParameters::onChange(rigid_body_sim::RigidBodyConfig& requested, uint32_t) {
+  const rigid_body::Nanoseconds arrival = now_();
+  // Forces: applied to every body when one of them changed (gravity is the scene's; damping is set for all).
+  const bool damping = requested.linear_damping != current_.linear_damping ||
+                       requested.angular_damping != current_.angular_damping;
+  const bool gravity = requested.gravity_x != current_.gravity_x || requested.gravity_y != current_.gravity_y ||
+                       requested.gravity_z != current_.gravity_z;
+  if (damping || gravity) {
+    config_.gravity_W = Eigen::Vector3d(requested.gravity_x, requested.gravity_y, requested.gravity_z);
+    for (std::size_t body = 0; body < config_.bodies.size(); ++body) {
+      rigid_body::ForceModel forces = world_.scene().model(body).forces;
+      forces.gravity_W = config_.gravity_W;
+      if (damping) {
+        forces.linear_damping = requested.linear_damping;
+        forces.angular_damping = requested.angular_damping;
+      }
+      config_.bodies[body].model.forces = forces;
+      const rigid_body::CommandReply reply = world_.setForceModel(body, forces, arrival);
+      if (!reply.accepted) ROS_WARN("rigid_body_node: live parameters: %s", reply.message.c_str());
+    }
+  }
+  if (requested.wrench_timeout != current_.wrench_timeout) {
+    config_.wrench_timeout = requested.wrench_timeout;
+    world_.setWrenchTimeout(requested.wrench_timeout, arrival);
+  }
+  config_.wrench_limits.max_force = limitFrom(requested.max_force);
+  config_.wrench_limits.max_torque = limitFrom(requested.max_torque);
+  config_.real_time_factor = requested.real_time_factor;
+  // The marker rate stays within the node's rate, as at start-up.
+  requested.marker_rate = std::min(requested.marker_rate, config_.rate);
+  config_.marker_rate = requested.marker_rate;
+  current_ = requested;
+}
+
+}  // namespace rigid_body_ros

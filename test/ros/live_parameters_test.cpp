@@ -1,0 +1,76 @@
+// Live parameters: gravity set through dynamic_reconfigure reaches the next steps (the body accelerates at
+// g, in simulated time) and re-assembles the step terms; set back to zero, the term goes again.
+#include <dynamic_reconfigure/Reconfigure.h>
+#include <gtest/gtest.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+
+#include "test_helpers.hpp"
+
+namespace {
+
+using namespace test_helpers;
+
+bool setDouble(const std::string& name, double value) {
+  dynamic_reconfigure::Reconfigure request;
+  dynamic_reconfigure::DoubleParameter parameter;
+  parameter.name = name;
+  parameter.value = value;
+  request.request.config.doubles.push_back(parameter);
+  return ros::service::waitForService("live/node/set_parameters", ros::Duration(10.0)) &&
+         ros::service::call("live/node/set_parameters", request);
+}
+
+double vz(const nav_msgs::Odometry& odom) { return worldVelocity(odom).z(); }
+
+}  // namespace
+
+TEST(LiveParameters, GravityTurnedOnAcceleratesTheBodyAndAddsItsTerm) {
+  ros::NodeHandle nh;
+  Diagnostics diagnostics(nh);
+  Recorder<nav_msgs::Odometry> odom(nh, "live/odom");
+  ASSERT_TRUE(odom.waitForCount(5));
+  EXPECT_EQ(vz(odom.messages.back()), 0.0);  // zero g: at rest
+  ASSERT_TRUE(diagnostics.waitFor("live_link", [](const diagnostic_msgs::DiagnosticStatus& s) {
+    const std::string terms = Diagnostics::value(s, "step terms");
+    return !terms.empty() && terms.find("gravity") == std::string::npos;
+  }));
+  ASSERT_TRUE(setDouble("gravity_z", -9.81));
+  // Falling: between two odometry messages v_z changes by g times the simulated time between them.
+  ASSERT_TRUE(waitUntil([&] { return vz(odom.messages.back()) < -0.1; }));
+  const std::size_t n = odom.messages.size();
+  ASSERT_TRUE(odom.waitForCount(n + 5));
+  const nav_msgs::Odometry& a = odom.messages[n];
+  const nav_msgs::Odometry& b = odom.messages.back();
+  const double elapsed = (b.header.stamp - a.header.stamp).toSec();
+  EXPECT_NEAR(vz(b) - vz(a), -9.81 * elapsed, 1e-6);
+  EXPECT_TRUE(diagnostics.waitFor("live_link", [](const diagnostic_msgs::DiagnosticStatus& s) {
+    return Diagnostics::value(s, "step terms").find("gravity") != std::string::npos;
+  }));
+  // Off again: the velocity stays, the term goes.
+  ASSERT_TRUE(setDouble("gravity_z", 0.0));
+  EXPECT_TRUE(diagnostics.waitFor("live_link", [](const diagnostic_msgs::DiagnosticStatus& s) {
+    const std::string terms = Diagnostics::value(s, "step terms");
+    return !terms.empty() && terms.find("gravity") == std::string::npos;
+  }));
+  const std::size_t m = odom.messages.size();
+  ASSERT_TRUE(odom.waitForCount(m + 3));
+  EXPECT_EQ(vz(odom.messages[m]), vz(odom.messages.back()));
+}
+
+TEST(LiveParameters, AnOutOfRangeValueIsClampedByTheServerNotApplied) {
+  // dynamic_reconfigure clamps to the .cfg's range: damping below 0 arrives as 0 (no pulling force).
+  ros::NodeHandle nh;
+  Recorder<nav_msgs::Odometry> odom(nh, "live/odom");
+  ASSERT_TRUE(odom.waitForCount(2));
+  ASSERT_TRUE(setDouble("linear_damping", -5.0));
+  double value = -1.0;
+  EXPECT_TRUE(waitUntil([&] { return ros::param::get("live/node/linear_damping", value) && value == 0.0; }));
+}
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "live_parameters_test");
+  ros::NodeHandle nh;
+  return RUN_ALL_TESTS();
+}
