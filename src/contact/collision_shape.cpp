@@ -8,6 +8,15 @@
 
 namespace rigid_body {
 
+namespace {
+
+// Shapes live within the contact world: sizes and positions up to 1e6 m (where doubles still resolve 1e-10 m
+// and no bounding box can overflow), sizes down to 1e-6 m (below, Bullet's margins and tolerances dominate).
+constexpr double kLargest = 1e6;
+constexpr double kSmallest = 1e-6;
+
+}  // namespace
+
 const char* shapeTypeName(ShapeType type) {
   switch (type) {
     case ShapeType::kPlane:
@@ -57,18 +66,22 @@ void validateShape(const CollisionShape& shape, bool in_environment) {
   if (!(shape.material.friction >= 0.0) || !std::isfinite(shape.material.friction)) {
     throw std::invalid_argument(what + ": friction must be a finite number >= 0");
   }
-  if (!shape.pose.matrix().allFinite()) throw std::invalid_argument(what + ": pose must be finite");
+  if (!shape.pose.matrix().allFinite() || !(shape.pose.translation().norm() <= kLargest)) {
+    throw std::invalid_argument(what + ": pose must be finite, within 1e6 m of the origin");
+  }
   const Eigen::Vector3d& s = shape.size;
   auto positive = [&](int count) {
     for (int i = 0; i < count; ++i) {
-      if (!(s[i] > 0.0) || !std::isfinite(s[i])) throw std::invalid_argument(what + ": sizes must be finite and > 0");
+      if (!(s[i] >= kSmallest && s[i] <= kLargest)) {
+        throw std::invalid_argument(what + ": sizes must be in [1e-6, 1e6] m");
+      }
     }
   };
   switch (shape.type) {
     case ShapeType::kPlane:
       if (!in_environment) throw std::invalid_argument("a plane can only be part of the environment");
-      if (!shape.normal.allFinite() || !(shape.normal.norm() > 0.0) || !std::isfinite(shape.offset)) {
-        throw std::invalid_argument(what + ": needs a finite non-zero normal and a finite offset");
+      if (!shape.normal.allFinite() || !(shape.normal.norm() > 0.0) || !(std::abs(shape.offset) <= kLargest)) {
+        throw std::invalid_argument(what + ": needs a finite non-zero normal and an offset within 1e6 m");
       }
       return;
     case ShapeType::kBox:
@@ -84,10 +97,10 @@ void validateShape(const CollisionShape& shape, bool in_environment) {
       }
       Eigen::Vector3d low = shape.mesh.vertices.front(), high = low;
       for (const auto& v : shape.mesh.vertices) {
-        if (!v.allFinite()) throw std::invalid_argument(what + ": mesh vertices must be finite");
+        if (!(v.norm() <= kLargest)) throw std::invalid_argument(what + ": mesh vertices must be within 1e6 m");
         low = low.cwiseMin(v), high = high.cwiseMax(v);
       }
-      if (!((high - low).minCoeff() > 0.0)) throw std::invalid_argument(what + ": the mesh is flat (no volume)");
+      if (!((high - low).minCoeff() >= kSmallest)) throw std::invalid_argument(what + ": the mesh is flat (no volume)");
       for (const auto& t : shape.mesh.triangles) {
         for (int i : t) {
           if (i < 0 || static_cast<std::size_t>(i) >= shape.mesh.vertices.size()) {
@@ -104,9 +117,9 @@ void validateContactSettings(const ContactSettings& s) {
   auto require = [](bool ok, const char* message) {
     if (!ok) throw std::invalid_argument(message);
   };
-  require(s.iterations >= 1 && s.iterations <= 10000, "contact iterations must be an integer in [1, 10000]");
-  require(s.position_iterations >= 0 && s.position_iterations <= 10000,
-          "contact position_iterations must be an integer in [0, 10000]");
+  require(s.iterations >= 1 && s.iterations <= 1000, "contact iterations must be an integer in [1, 1000]");
+  require(s.position_iterations >= 0 && s.position_iterations <= 1000,
+          "contact position_iterations must be an integer in [0, 1000]");
   require(s.restitution_threshold >= 0.0 && std::isfinite(s.restitution_threshold),
           "contact restitution_threshold must be a finite number >= 0 [m/s]");
   require(s.penetration_slop >= 0.0 && s.penetration_slop <= 1.0, "contact penetration_slop must be in [0, 1] [m]");

@@ -78,7 +78,11 @@ Eigen::Vector3d readSize(const XmlRpcValue& params, const std::string& name, rig
   const std::vector<double> size = readNumbers(params, name, fallback, length, allowed);
   Eigen::Vector3d out = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < length; ++i) {
-    if (!(size[i] > 0.0)) fail(name, *find(params, name), allowed);
+    // Within the contact world (docs/contact.md): 1e-6 … 1e6 m.
+    if (!(size[i] >= 1e-6 && size[i] <= 1e6)) {
+      if (find(params, name)) fail(name, *find(params, name), allowed + ", each in [1e-6, 1e6] m");
+      fail(name, XmlRpcValue(size[i]), allowed + ", each in [1e-6, 1e6] m (the body's own size is outside)");
+    }
     out[static_cast<int>(i)] = size[i];
   }
   return out;
@@ -103,6 +107,9 @@ Eigen::Isometry3d readPose(const XmlRpcValue& params, const std::string& prefix)
   requireStruct(params, prefix + "pose", "position, orientation");
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.translation() = readVector3(params, prefix + "pose/position", "[m]");
+  if (!(pose.translation().norm() <= 1e6)) {
+    fail(prefix + "pose/position", *find(params, prefix + "pose/position"), "must be within 1e6 m of the origin [m]");
+  }
   const std::vector<double> q = readNumbers(params, prefix + "pose/orientation", {0.0, 0.0, 0.0, 1.0}, 4,
                                             "must be a unit quaternion [x, y, z, w] of 4 finite numbers");
   const Eigen::Quaterniond orientation(q[3], q[0], q[1], q[2]);
@@ -146,7 +153,8 @@ std::vector<rigid_body::CollisionShape> readEnvironment(const XmlRpcValue& param
         shape.normal = Eigen::Vector3d(n[0], n[1], n[2]);
         if (!(shape.normal.norm() > 1e-9)) fail("normal", *find(item, "normal"), "must be 3 finite numbers, not all 0");
         shape.normal.normalize();
-        shape.offset = readNumber(item, "offset", 0.0, [](double) { return true; }, "must be a finite number [m]");
+        shape.offset = readNumber(item, "offset", 0.0, [](double d) { return std::abs(d) <= 1e6; },
+                                  "must be a finite number in [-1e6, 1e6] [m]");
       } else {
         for (const char* key : {"normal", "offset"}) {
           if (find(item, key)) fail(key, *find(item, key), "is a key of a plane only");
@@ -212,12 +220,12 @@ rigid_body::ContactSettings readContactSettings(const XmlRpcValue& params) {
   requireStruct(params, "contact", "iterations, position_iterations, restitution_threshold, penetration_slop, "
                                    "position_correction, event_location, continuous");
   settings.iterations = readInteger(params, "contact/iterations", settings.iterations, 1,
-                                    "must be an integer in [1, 10000] (solver sweeps per step)");
-  if (settings.iterations > 10000) fail("contact/iterations", *find(params, "contact/iterations"), "must be an integer in [1, 10000]");
+                                    "must be an integer in [1, 1000] (solver sweeps per step)");
+  if (settings.iterations > 1000) fail("contact/iterations", *find(params, "contact/iterations"), "must be an integer in [1, 1000]");
   settings.position_iterations = readInteger(params, "contact/position_iterations", settings.position_iterations, 0,
-                                             "must be an integer in [0, 10000] (projection sweeps per step)");
-  if (settings.position_iterations > 10000) {
-    fail("contact/position_iterations", *find(params, "contact/position_iterations"), "must be an integer in [0, 10000]");
+                                             "must be an integer in [0, 1000] (projection sweeps per step)");
+  if (settings.position_iterations > 1000) {
+    fail("contact/position_iterations", *find(params, "contact/position_iterations"), "must be an integer in [0, 1000]");
   }
   settings.restitution_threshold = readNumber(params, "contact/restitution_threshold", settings.restitution_threshold,
                                               [](double v) { return v >= 0.0 && v <= 1e3; },

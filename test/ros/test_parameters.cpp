@@ -524,6 +524,20 @@ TEST(ContactParameters, EachInvalidContactValueNamesItsParameter) {
   }
   {
     XmlRpcValue p;
+    p["collision"]["shape"] = std::string("sphere");
+    p["collision"]["size"] = list({1e7});
+    cases.push_back({p, "parameter ~collision/size = [10000000]: for a sphere, must be [radius] > 0 [m], each in [1e-6, 1e6] m"});
+  }
+  {
+    XmlRpcValue p;
+    XmlRpcValue wall = shapeItem("box");
+    wall["size"] = list({1.0, 1.0, 1.0});
+    wall["pose"]["position"] = list({1e300, 0.0, 0.0});
+    p["environment"][0] = wall;
+    cases.push_back({p, "parameter ~environment[0]/pose/position"});
+  }
+  {
+    XmlRpcValue p;
     p["contact"]["iterations"] = 0;
     cases.push_back({p, "parameter ~contact/iterations = 0"});
   }
