@@ -188,7 +188,16 @@ std::optional<rigid_body::CollisionShape> readCollision(const XmlRpcValue& param
   if (!own) refuseUnknown(*value, "collision/", kCollisionKeys);
   rigid_body::CollisionShape shape;
   shape.name = body.name.empty() ? body.body_frame : body.name;
-  const std::string own_shape = body.shape == "inertia" ? "" : body.shape;
+  if (body.shape == "urdf" && (own || !find(params, "collision/shape"))) {
+    // The link's own <collision>, posed in the body frame; a struct may still set the material.
+    if (!body.urdf_collision) fail("collision", *value, "needs a shape: the link has no <collision>; give collision/shape");
+    if (!own && find(params, "collision/size")) fail("collision/size", *find(params, "collision/size"), "needs collision/shape too");
+    shape = *body.urdf_collision;
+    shape.name = body.name.empty() ? body.body_frame : body.name;
+    if (!own) readMaterial(params, "collision/", shape.material);
+    return shape;
+  }
+  const std::string own_shape = body.shape == "inertia" || body.shape == "urdf" ? "" : body.shape;
   if (own && own_shape.empty()) {
     fail("collision", *value, "needs a shape: a body given by ~inertia has none; give collision/shape and collision/size");
   }

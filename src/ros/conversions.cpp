@@ -41,6 +41,46 @@ void fillOdometry(const rigid_body::MassProperties& mass, const rigid_body::Stat
   tf2::toMsg(Eigen::Vector3d(R_BW * motion.w_WB_W), odom.twist.twist.angular);
 }
 
+FrameMotion publishedFrame(const rigid_body::MassProperties& mass, const rigid_body::State& state,
+                           const Eigen::Isometry3d& X_BP) {
+  const rigid_body::Motion motion = rigid_body::motionOf(mass, state);
+  const Eigen::Vector3d p_BP_W = motion.R_WB * X_BP.translation();
+  FrameMotion frame;
+  frame.p_WP = state.p_WB + p_BP_W;
+  frame.q_WP = (state.q_WB * Eigen::Quaterniond(X_BP.linear())).normalized();
+  frame.v_WP_W = motion.v_WB_W + motion.w_WB_W.cross(p_BP_W);
+  frame.w_W = motion.w_WB_W;
+  return frame;
+}
+
+void fillOdometry(const rigid_body::MassProperties& mass, const rigid_body::State& state, const Eigen::Isometry3d& X_BP,
+                  nav_msgs::Odometry& odom) {
+  const FrameMotion frame = publishedFrame(mass, state, X_BP);
+  odom.pose.pose.position = tf2::toMsg(frame.p_WP);
+  odom.pose.pose.orientation = tf2::toMsg(frame.q_WP);
+  const Eigen::Matrix3d R_PW = frame.q_WP.toRotationMatrix().transpose();
+  tf2::toMsg(Eigen::Vector3d(R_PW * frame.v_WP_W), odom.twist.twist.linear);
+  tf2::toMsg(Eigen::Vector3d(R_PW * frame.w_W), odom.twist.twist.angular);
+}
+
+void fillTransform(const rigid_body::MassProperties& mass, const rigid_body::State& state,
+                   const Eigen::Isometry3d& X_BP, geometry_msgs::TransformStamped& transform) {
+  const FrameMotion frame = publishedFrame(mass, state, X_BP);
+  transform.transform.translation.x = frame.p_WP.x();
+  transform.transform.translation.y = frame.p_WP.y();
+  transform.transform.translation.z = frame.p_WP.z();
+  transform.transform.rotation = tf2::toMsg(frame.q_WP);
+}
+
+void fillStateMessage(const rigid_body::Model& model, const rigid_body::State& state, const Eigen::Isometry3d& X_BP,
+                      const rigid_body::AppliedWrench& input, rigid_body_sim::RigidBodyState& message) {
+  fillStateMessage(model, state, input, message);
+  const FrameMotion frame = publishedFrame(model.mass, state, X_BP);
+  message.pose.position = tf2::toMsg(frame.p_WP);
+  message.pose.orientation = tf2::toMsg(frame.q_WP);
+  tf2::toMsg(frame.v_WP_W, message.twist.linear);
+}
+
 void fillTransform(const rigid_body::State& state, geometry_msgs::TransformStamped& transform) {
   transform.transform.translation.x = state.p_WB.x();
   transform.transform.translation.y = state.p_WB.y();

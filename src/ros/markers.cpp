@@ -111,14 +111,26 @@ void Markers::addBodies() {
       marker.mesh_resource = b.mesh_uri.rfind("package://", 0) == 0 ? b.mesh_uri : "file://" + b.mesh_path;
       marker.scale.x = marker.scale.y = marker.scale.z = b.mesh_scale;
       setPose(b.X_MB.inverse(), marker.pose);
-    } else if (b.shape == "inertia") {
-      // No shape: the box with the same principal moments, turned to the principal axes.
+    } else if (b.shape == "urdf" && (b.visual || !b.visual_mesh.empty())) {
+      // The link's <visual>, posed in the link frame, which is the published frame.
+      if (b.visual) {
+        primitive(b.visual->type, b.visual->size, marker);
+        setPose(b.visual->pose, marker.pose);
+      } else {
+        marker.type = visualization_msgs::Marker::MESH_RESOURCE;
+        marker.mesh_resource = b.visual_mesh;
+        marker.scale.x = marker.scale.y = marker.scale.z = b.visual_mesh_scale;
+        setPose(b.X_PV, marker.pose);
+      }
+    } else if (b.shape == "inertia" || b.shape == "urdf") {
+      // No shape to draw: the box with the same principal moments, at the centre of mass along the principal
+      // axes (in the published frame: X_P,principal = X_BP⁻¹ X_B,principal).
       marker.type = visualization_msgs::Marker::CUBE;
       const Eigen::Vector3d size = equivalentBox(b.model.mass);
       marker.scale.x = size.x(), marker.scale.y = size.y(), marker.scale.z = size.z();
-      Eigen::Isometry3d X_BP = Eigen::Isometry3d::Identity();
-      X_BP.linear() = b.model.mass.principalAxes();
-      setPose(X_BP, marker.pose);
+      Eigen::Isometry3d X_B_principal = Eigen::Isometry3d::Identity();
+      X_B_principal.linear() = b.model.mass.principalAxes();
+      setPose(b.X_BP.inverse() * X_B_principal, marker.pose);
     } else {
       const rigid_body::ShapeType type = b.shape == "box"      ? rigid_body::ShapeType::kBox
                                          : b.shape == "sphere" ? rigid_body::ShapeType::kSphere

@@ -135,7 +135,11 @@ void Outputs::publishArray(const rigid_body::World& world, const ros::Time& stam
   for (std::size_t body = 0; body < channels_.size(); ++body) {
     nav_msgs::Odometry& odom = channels_[body].odom_message;
     odom.header.stamp = stamp;
-    fillOdometry(scene.model(body).mass, scene.state(body), odom);
+    if (config_.bodies[body].published_offset) {
+      fillOdometry(scene.model(body).mass, scene.state(body), config_.bodies[body].X_BP, odom);
+    } else {
+      fillOdometry(scene.model(body).mass, scene.state(body), odom);
+    }
     if (!finite(odom)) {
       ++withheld_;
       ROS_WARN_THROTTLE(kWarningPeriod, "rigid_body_node: bodies/odom withheld: a non-finite velocity of %s",
@@ -175,12 +179,20 @@ void Outputs::publishBody(const rigid_body::World& world, std::size_t body, cons
   channel.max_norm_error = std::max(channel.max_norm_error, std::abs(rigid_body::quaternionNormError(state)));
   if (config_.publish.tf) {
     transforms_[body].header.stamp = stamp;
-    fillTransform(state, transforms_[body]);
+    if (config_.bodies[body].published_offset) {
+      fillTransform(scene.model(body).mass, state, config_.bodies[body].X_BP, transforms_[body]);
+    } else {
+      fillTransform(state, transforms_[body]);
+    }
   }
   const bool odom = channel.odom_subscribers > 0;
   if (odom || channel.noise) {
     channel.odom_message.header.stamp = stamp;
-    fillOdometry(scene.model(body).mass, state, channel.odom_message);
+    if (config_.bodies[body].published_offset) {
+      fillOdometry(scene.model(body).mass, state, config_.bodies[body].X_BP, channel.odom_message);
+    } else {
+      fillOdometry(scene.model(body).mass, state, channel.odom_message);
+    }
     if (!finite(channel.odom_message)) {
       ++withheld_;
       ROS_WARN_THROTTLE(kWarningPeriod, "rigid_body_node: %s: odometry withheld: a non-finite velocity",
@@ -193,7 +205,11 @@ void Outputs::publishBody(const rigid_body::World& world, std::size_t body, cons
   const bool applied_wrench = channel.applied_wrench_subscribers > 0;
   if (channel.state_subscribers > 0 || applied_wrench) {
     channel.state_message.header.stamp = stamp;
-    fillStateMessage(scene.model(body), state, scene.input(body), channel.state_message);
+    if (config_.bodies[body].published_offset) {
+      fillStateMessage(scene.model(body), state, config_.bodies[body].X_BP, scene.input(body), channel.state_message);
+    } else {
+      fillStateMessage(scene.model(body), state, scene.input(body), channel.state_message);
+    }
     channel.state_message.contacts = static_cast<std::uint32_t>(scene.contactCount(body));
     if (!finite(channel.state_message)) {
       ++withheld_;

@@ -20,6 +20,7 @@
 #include "rigid_body_sim/mesh_mass_properties.hpp"
 #include "rigid_body_sim/number_format.hpp"
 #include "rigid_body_sim/ros/contact_parameters.hpp"
+#include "rigid_body_sim/ros/urdf_body.hpp"
 
 namespace rigid_body_ros {
 
@@ -46,7 +47,7 @@ constexpr double kQuaternionNormTolerance = 1e-3;
 const std::set<std::string> kBodyNames = {
     "name", "body_frame", "mass", "shape", "size", "inertia", "initial", "linear_damping", "angular_damping",
     "mesh", "scale", "density", "inertia_method", "samples", "principal_axes", "mesh_frame", "wrench_input",
-    "max_mesh_bytes", "collision"};
+    "max_mesh_bytes", "collision", "urdf", "robot_description", "link"};
 const std::set<std::string> kSceneNames = {
     "rate", "dt", "integrator", "world_frame", "gravity", "bodies", "wrench_timeout", "max_substeps",
     "max_body_steps_per_tick", "max_body_steps_per_request", "publish_tf",
@@ -112,7 +113,51 @@ rigid_body::MassProperties readMeshMassProperties(const XmlRpcValue& params, Bod
   }
 }
 
-rigid_body::MassProperties readMassProperties(const XmlRpcValue& params, BodyConfig& config) {
+// shape: urdf. The body frame is the link's inertial frame (centre of mass, its axes); the published frame is
+// the link frame, at X_BP = X_LB⁻¹.
+rigid_body::MassProperties readUrdfMassProperties(const XmlRpcValue& params, BodyConfig& config,
+                                                  const ParameterReader& reader) {
+  for (const char* key : {"shape", "size", "mass", "inertia", "mesh", "scale", "density", "inertia_method", "samples",
+                          "principal_axes", "mesh_frame"}) {
+    if (find(params, key)) fail(key, *find(params, key), "is not a key of a body given by ~urdf or ~robot_description");
+  }
+  if (find(params, "urdf") && find(params, "robot_description")) {
+    fail("robot_description", *find(params, "robot_description"), "give ~urdf or ~robot_description, not both");
+  }
+  config.link = readString(params, "link", "", "must be the name of a link of the robot description");
+  if (config.link.empty()) fail("link", XmlRpcValue(std::string()), "must be set with ~urdf or ~robot_description");
+  const std::size_t max_bytes = static_cast<std::size_t>(
+      readNumber(params, "max_mesh_bytes", static_cast<double>(rigid_body::kDefaultMaxMeshBytes),
+                 [](double b) { return b >= 1.0 && b <= kMaxMeshBytesLimit; },
+                 "must be a number of bytes in [1, 4e9] (the largest mesh file read)"));
+  std::string xml;
+  if (find(params, "urdf")) {
+    xml = readUrdfFile(readString(params, "urdf", "", "must be a URDF file path or package:// URI"), max_bytes);
+  } else {
+    const std::string name = readString(params, "robot_description", "", "must name the parameter that holds the URDF");
+    if (name.empty() || !reader || !reader(name, xml)) {
+      fail("robot_description", *find(params, "robot_description"), "must name a parameter that holds the URDF as text");
+    }
+  }
+  UrdfLink link = readUrdfLink(xml, config.link, max_bytes);
+  config.shape = "urdf";
+  config.size.clear();
+  config.X_BP = link.X_LB.inverse();
+  config.published_offset = !link.X_LB.isApprox(Eigen::Isometry3d::Identity(), 0.0);
+  if (link.collision) {
+    config.urdf_collision = link.collision;
+    config.urdf_collision->pose = config.X_BP * link.collision->pose;  // X_BC = X_BL X_LC
+  }
+  config.visual = link.visual;
+  config.visual_mesh = link.visual_mesh;
+  config.visual_mesh_scale = link.visual_mesh_scale;
+  config.X_PV = link.X_LV;
+  return link.mass;
+}
+
+rigid_body::MassProperties readMassProperties(const XmlRpcValue& params, BodyConfig& config,
+                                              const ParameterReader& reader) {
+  if (find(params, "urdf") || find(params, "robot_description")) return readUrdfMassProperties(params, config, reader);
   const std::string shape_allowed = "must be one of: box, sphere, cylinder, mesh (or give ~inertia)";
   if (!find(params, "inertia") && readString(params, "shape", "box", shape_allowed) == "mesh") {
     config.shape = "mesh";
@@ -175,15 +220,18 @@ rigid_body::MassProperties readMassProperties(const XmlRpcValue& params, BodyCon
 // One body's keys in `params` (the top level in the flat form, an item of ~bodies otherwise); the scene's
 // gravity is already in config.gravity_W.
 BodyConfig parseBody(const XmlRpcValue& params, const NodeConfig& scene, const std::string& default_frame,
-                     std::vector<std::string>& unknown) {
+                     std::vector<std::string>& unknown, const ParameterReader& reader) {
   requireStruct(params, "initial", "position, orientation, linear_velocity, angular_velocity");
   BodyConfig body;
-  body.body_frame = readFrame(params, "body_frame", default_frame);
+  // A link of a robot description publishes its own frame, under the link's name unless body_frame says.
+  const bool urdf = find(params, "urdf") || find(params, "robot_description");
+  const std::string link = urdf ? readString(params, "link", "", "must be the name of a link of the robot description") : "";
+  body.body_frame = readFrame(params, "body_frame", urdf && !link.empty() ? link : default_frame);
   if (scene.world_frame == body.body_frame) {
     const XmlRpcValue* body_frame = find(params, "body_frame");
     fail("body_frame", body_frame ? *body_frame : XmlRpcValue(body.body_frame), "must differ from ~world_frame");
   }
-  body.model.mass = readMassProperties(params, body);
+  body.model.mass = readMassProperties(params, body, reader);
   body.model.forces.gravity_W = scene.gravity_W;
   body.model.forces.linear_damping = readNumber(params, "linear_damping", 0.0, [](double c) { return c >= 0.0; },
                                                 "must be a finite number >= 0 [N s/m]");
@@ -201,8 +249,21 @@ BodyConfig parseBody(const XmlRpcValue& params, const NodeConfig& scene, const s
   }
   body.initial_linear_velocity_W = readVector3(params, "initial/linear_velocity", "[m/s], world axes");
   body.initial_angular_velocity_B = readVector3(params, "initial/angular_velocity", "[rad/s], body axes");
-  body.initial = rigid_body::stateFromVelocities(body.model.mass, position, orientation,
-                                                 body.initial_linear_velocity_W, body.initial_angular_velocity_B);
+  if (body.published_offset) {
+    // initial/* place and move the published (link) frame P: X_WB = X_WP X_PB, ω in P's axes, and the centre
+    // of mass moves at v_B = v_P + ω × (p_WB − p_WP).
+    Eigen::Isometry3d X_WP = Eigen::Isometry3d::Identity();
+    X_WP.linear() = orientation.normalized().toRotationMatrix();
+    X_WP.translation() = position;
+    const Eigen::Isometry3d X_WB = X_WP * body.X_BP.inverse();
+    const Eigen::Vector3d w_W = X_WP.linear() * body.initial_angular_velocity_B;
+    const Eigen::Vector3d v_B = body.initial_linear_velocity_W + w_W.cross(X_WB.translation() - position);
+    body.initial = rigid_body::stateFromVelocities(body.model.mass, X_WB.translation(), Eigen::Quaterniond(X_WB.linear()),
+                                                   v_B, X_WB.linear().transpose() * w_W);
+  } else {
+    body.initial = rigid_body::stateFromVelocities(body.model.mass, position, orientation,
+                                                   body.initial_linear_velocity_W, body.initial_angular_velocity_B);
+  }
   body.mesh_frame = readString(params, "mesh_frame", "", "must be a tf2 frame id");
   if (!body.mesh_frame.empty()) {
     if (body.shape != "mesh") fail("mesh_frame", *find(params, "mesh_frame"), "is only for shape mesh");
@@ -232,10 +293,10 @@ bool isBodyName(const std::string& name) {
 }
 
 std::vector<BodyConfig> parseBodies(const XmlRpcValue& params, const NodeConfig& scene,
-                                    std::vector<std::string>& unknown) {
+                                    std::vector<std::string>& unknown, const ParameterReader& reader) {
   const XmlRpcValue* list = find(params, "bodies");
   if (!list) {
-    std::vector<BodyConfig> bodies = {parseBody(params, scene, "base_link", unknown)};
+    std::vector<BodyConfig> bodies = {parseBody(params, scene, "base_link", unknown, reader)};
     if (find(params, "name")) fail("name", *find(params, "name"), "is a key of the items of ~bodies only");
     return bodies;
   }
@@ -262,7 +323,7 @@ std::vector<BodyConfig> parseBodies(const XmlRpcValue& params, const NodeConfig&
         fail("name", find(item, "name") ? *find(item, "name") : XmlRpcValue(name),
              "must be a unique name of letters, digits and '_' that starts with a letter");
       }
-      BodyConfig body = parseBody(item, scene, name, unknown);
+      BodyConfig body = parseBody(item, scene, name, unknown, reader);
       body.name = name;
       if (body.collision) body.collision->name = name;
       if (!frames.insert(body.body_frame).second) {
@@ -388,7 +449,7 @@ std::vector<std::string> unknownNames(const XmlRpcValue& params, const std::vect
 
 }  // namespace
 
-NodeConfig parseConfig(const XmlRpcValue& params) {
+NodeConfig parseConfig(const XmlRpcValue& params, const ParameterReader& reader) {
   NodeConfig config;
   if (params.getType() != XmlRpcValue::TypeStruct && params.getType() != XmlRpcValue::TypeInvalid) {
     throw ParameterError("the private namespace ~ = " + render(params) +
@@ -400,7 +461,7 @@ NodeConfig parseConfig(const XmlRpcValue& params) {
   config.world_frame = readFrame(params, "world_frame", config.world_frame);
   config.gravity_W = readVector3(params, "gravity", "[m/s^2]");
   std::vector<std::string> unknown_in_bodies;  // reported after the top-level names
-  config.bodies = parseBodies(params, config, unknown_in_bodies);
+  config.bodies = parseBodies(params, config, unknown_in_bodies, reader);
   readLimits(params, config);
   readOutputs(params, config);
   config.noise = readNoise(params);
@@ -425,7 +486,7 @@ std::string resolveMeshUri(const std::string& uri) {
 NodeConfig loadConfig(const ros::NodeHandle& private_nh) {
   XmlRpcValue params;
   if (!ros::param::get(private_nh.getNamespace(), params)) params = XmlRpcValue();
-  return parseConfig(params);
+  return parseConfig(params, [](const std::string& name, std::string& value) { return ros::param::get(name, value); });
 }
 
 rigid_body::ContactSetup NodeConfig::contactSetup() const {

@@ -105,6 +105,14 @@ bool WrenchInput::convert(std::size_t body, const geometry_msgs::Wrench& wrench,
   bool finite = true;
   switch (classifyWrenchFrame(frame, config_.world_frame, config_.bodies[body].body_frame)) {
     case WrenchFrame::kBody:
+      if (config_.bodies[body].published_offset) {
+        // The published frame is a URDF link frame P at X_BP: its axes about its origin (or the point).
+        const WrenchAtPoint at = wrenchAtPointInWorld(wrench, config_.bodies[body].X_BP, point);  // "world" = B
+        out.wrench.body.force = at.wrench_W.force;
+        out.wrench.body.torque = at.wrench_W.torque + at.p_WQ.cross(at.wrench_W.force);
+        finite = out.wrench.body.isFinite();
+        break;
+      }
       // Body axes about the centre of mass (the body frame's origin): turns with the body.
       if (point) given.torque += point->cross(given.force);
       out.wrench.body = given;
@@ -131,7 +139,9 @@ bool WrenchInput::convert(std::size_t body, const geometry_msgs::Wrench& wrench,
           warnUnknownFrame(frame, exception.what());
           return false;
         }
-        const WrenchAtPoint at = wrenchAtPointInWorld(wrench, tf2::transformToEigen(X_BF), point);  // "world" = B here
+        // tf gives the frame in the published frame P; X_BF = X_BP X_PF (X_BP the identity but for a URDF link).
+        const Eigen::Isometry3d X_BF_eigen = config_.bodies[body].X_BP * tf2::transformToEigen(X_BF);
+        const WrenchAtPoint at = wrenchAtPointInWorld(wrench, X_BF_eigen, point);  // "world" = B here
         out.wrench.body.force = at.wrench_W.force;
         out.wrench.body.torque = at.wrench_W.torque + at.p_WQ.cross(at.wrench_W.force);
         finite = out.wrench.body.isFinite();

@@ -95,6 +95,11 @@ INSTANTIATE_TEST_SUITE_P(
                            "parameter ~collision/restitution = 1.5: must be a number in [0, 1]"},
                       Case{"friction", "_collision/friction:=-0.1", "parameter ~collision/friction = -0.10000000000000001"},
                       Case{"contact_iterations", "_contact/iterations:=0", "parameter ~contact/iterations = 0"},
+                      // A URDF link that cannot be a body.
+                      Case{"urdf_no_link", "_urdf:=" TEST_URDF_DIR "/offset_link.urdf _link:=elbow",
+                           "parameter ~link = 'elbow': names no link of the robot description"},
+                      Case{"urdf_no_inertial", "_urdf:=" TEST_URDF_DIR "/offset_link.urdf _link:=sensor",
+                           "parameter ~link = 'sensor': has no <inertial>"},
                       Case{"samples_huge", "_shape:=mesh _mass:=1.0 _mesh:=" TEST_MESH_DIR "/box.obj _inertia_method:=sampling _samples:=2147483647",
                            "parameter ~samples = 2147483647: must be an integer in [1, 10000000]"}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "rigid_body_sim/kinematics.hpp"
+#include "rigid_body_sim/scene.hpp"
 #include "rigid_body_sim/ros/conversions.hpp"
 #include "rigid_body_sim/wrench_limits.hpp"
 
@@ -80,4 +81,40 @@ TEST(Conversions, OdometryTwistIsInTheBodyFrame) {
   EXPECT_NEAR(message.twist.linear.x, 1.0, 1e-15);  // world axes in the state message
   EXPECT_NEAR(message.applied_wrench.force.y, 1.0, 1e-15);
   EXPECT_NEAR(message.kinetic_energy, 0.5 * 1.0 + 0.5 * 0.25 * box.inertia()(2, 2), 1e-15);
+}
+
+TEST(Conversions, ThePublishedFramesTwistIsTheDerivativeOfItsPose) {
+  // A body spinning and moving in zero g, its published frame P offset and turned from the centre of mass
+  // (as a URDF link's): the twist publishedFrame reports must be what P's pose does, by central differences
+  // over a fine rk4 run (error O(h²)), in world axes and in P's own (the odometry's).
+  const rigid_body::MassProperties mass = rigid_body::MassProperties::box(2.0, Eigen::Vector3d(0.4, 0.3, 0.2));
+  Eigen::Isometry3d X_BP = Eigen::Isometry3d::Identity();
+  X_BP.linear() = Eigen::Matrix3d(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, -2, 0.5).normalized()));
+  X_BP.translation() = Eigen::Vector3d(-0.1, 0.25, 0.05);
+  rigid_body::BodyDefinition definition;
+  definition.model.mass = mass;
+  definition.initial = rigid_body::stateFromVelocities(mass, Eigen::Vector3d(1, 2, 3),
+                                                       Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX())),
+                                                       Eigen::Vector3d(0.4, -0.3, 0.2), Eigen::Vector3d(1.5, -0.5, 2.0));
+  definition.takes_input = false;
+  const double h = 1e-5;
+  rigid_body::Scene scene({definition}, rigid_body::IntegratorType::kRk4, h);
+  const FrameMotion before = publishedFrame(mass, scene.state(), X_BP);
+  scene.step(1);
+  const FrameMotion now = publishedFrame(mass, scene.state(), X_BP);
+  scene.step(1);
+  const FrameMotion after = publishedFrame(mass, scene.state(), X_BP);
+  const Eigen::Vector3d velocity = (after.p_WP - before.p_WP) / (2.0 * h);
+  EXPECT_LT((velocity - now.v_WP_W).norm(), 1e-8);
+  // Angular velocity from the orientation: q̇ = ½ ω q.
+  const Eigen::Quaterniond dq = after.q_WP * before.q_WP.conjugate();
+  const Eigen::Vector3d w = Eigen::AngleAxisd(dq).angle() / (2.0 * h) * Eigen::AngleAxisd(dq).axis();
+  EXPECT_LT((w - now.w_W).norm(), 1e-8);
+  // The odometry carries both in P's axes.
+  nav_msgs::Odometry odom;
+  fillOdometry(mass, scene.state(), X_BP, odom);
+  const FrameMotion last = publishedFrame(mass, scene.state(), X_BP);
+  Eigen::Vector3d v_P;
+  tf2::fromMsg(odom.twist.twist.linear, v_P);
+  EXPECT_LT((last.q_WP * v_P - last.v_WP_W).norm(), 1e-12);
 }

@@ -45,11 +45,30 @@ WrenchAtPoint wrenchAtPointInWorld(const geometry_msgs::Wrench& wrench_F, const 
 /// Header, frame ids and covariances are the caller's.
 void fillOdometry(const rigid_body::MassProperties& mass, const rigid_body::State& state, nav_msgs::Odometry& odom);
 
+/// The published frame P of a body (a URDF link frame) at X_BP in the body frame B at the centre of mass:
+/// X_WP = X_WB X_BP; its origin moves at v_P = v_B + ω × (R_WB p_BP); ω is the body's.
+struct FrameMotion {
+  Eigen::Vector3d p_WP;
+  Eigen::Quaterniond q_WP;
+  Eigen::Vector3d v_WP_W;  ///< velocity of P's origin, world axes [m/s]
+  Eigen::Vector3d w_W;     ///< angular velocity, world axes [rad/s]
+};
+FrameMotion publishedFrame(const rigid_body::MassProperties& mass, const rigid_body::State& state,
+                           const Eigen::Isometry3d& X_BP);
+/// Odometry, tf and the state message of the published frame P instead of B (pose of P, twist of P's
+/// origin; the state's momenta stay about the centre of mass).
+void fillOdometry(const rigid_body::MassProperties& mass, const rigid_body::State& state, const Eigen::Isometry3d& X_BP,
+                  nav_msgs::Odometry& odom);
+void fillTransform(const rigid_body::MassProperties& mass, const rigid_body::State& state,
+                   const Eigen::Isometry3d& X_BP, geometry_msgs::TransformStamped& transform);
+
 /// Translation and rotation of the world → body transform.
 void fillTransform(const rigid_body::State& state, geometry_msgs::TransformStamped& transform);
 
 /// Every field of RigidBodyState but the header and child_frame_id. `input` is the commanded wrench,
 /// reported in world axes at the current orientation.
+void fillStateMessage(const rigid_body::Model& model, const rigid_body::State& state, const Eigen::Isometry3d& X_BP,
+                      const rigid_body::AppliedWrench& input, rigid_body_sim::RigidBodyState& message);
 void fillStateMessage(const rigid_body::Model& model, const rigid_body::State& state,
                       const rigid_body::AppliedWrench& input, rigid_body_sim::RigidBodyState& message);
 

@@ -5,6 +5,7 @@
 #include <xmlrpcpp/XmlRpcValue.h>
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -65,6 +66,17 @@ struct BodyConfig {
   rigid_body::TriangleMesh mesh;           ///< the mesh as read and scaled, in its own frame M
   /// `collision`: the body's collision shape in the body frame, or none (it collides with nothing)
   std::optional<rigid_body::CollisionShape> collision;
+  // shape: urdf (a link of a robot description)
+  std::string link;                                          ///< the link's name
+  /// The published frame P (body_frame: tf, odometry, state) in the body frame B at the centre of mass: the
+  /// link frame of a URDF body, B itself otherwise (identity).
+  Eigen::Isometry3d X_BP = Eigen::Isometry3d::Identity();
+  bool published_offset = false;                             ///< X_BP is not the identity
+  std::optional<rigid_body::CollisionShape> urdf_collision;  ///< the link's <collision>, posed in B
+  std::optional<rigid_body::CollisionShape> visual;          ///< the link's <visual> primitive, posed in P
+  std::string visual_mesh;                                   ///< a mesh <visual>'s filename
+  double visual_mesh_scale = 1.0;
+  Eigen::Isometry3d X_PV = Eigen::Isometry3d::Identity();    ///< a mesh <visual>'s pose in P
 
   /// NAME/ + `topic`, or `topic` alone in the flat form.
   std::string topic(const std::string& topic) const { return name.empty() ? topic : name + "/" + topic; }
@@ -117,10 +129,14 @@ struct NodeConfig {
   std::string describe() const;
 };
 
+/// Reads a parameter of the ROS parameter server as text (for ~robot_description, which names one); false
+/// when it is not set or not text.
+using ParameterReader = std::function<bool(const std::string& name, std::string& value)>;
+
 /// Parses and validates the private namespace given as an XmlRpc struct (an invalid, i.e. unset, value
 /// means "all defaults"). Throws ParameterError on the first invalid parameter. Names the node does not
-/// know (e.g. "mas", "initial/postion") go to unknown_parameters.
-NodeConfig parseConfig(const XmlRpc::XmlRpcValue& params);
+/// know (e.g. "mas", "initial/postion") go to unknown_parameters. `reader` resolves ~robot_description.
+NodeConfig parseConfig(const XmlRpc::XmlRpcValue& params, const ParameterReader& reader = ParameterReader());
 
 /// A ~mesh value as a file path: "package://PKG/rel" becomes PKG's path (rospack) + "/rel"; anything else is
 /// returned as it is. Throws ParameterError if the package is unknown.

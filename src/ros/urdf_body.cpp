@@ -1,0 +1,128 @@
+#include "rigid_body_sim/ros/urdf_body.hpp"
+
+#include <urdf/model.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "parameter_values.hpp"
+#include "rigid_body_sim/mesh.hpp"
+#include "rigid_body_sim/mesh_io.hpp"
+#include "rigid_body_sim/ros/parameters.hpp"
+
+namespace rigid_body_ros {
+
+using namespace parameter_values;
+
+namespace {
+
+Eigen::Isometry3d toEigen(const urdf::Pose& pose) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  double x, y, z, w;
+  pose.rotation.getQuaternion(x, y, z, w);
+  X.linear() = Eigen::Quaterniond(w, x, y, z).normalized().toRotationMatrix();
+  X.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
+  return X;
+}
+
+std::string meshPath(const std::string& filename) {
+  const std::string file = "file://";
+  return filename.compare(0, file.size(), file) == 0 ? filename.substr(file.size()) : resolveMeshUri(filename);
+}
+
+// A URDF geometry as a collision shape; `what` names it in messages ("collision", "visual").
+rigid_body::CollisionShape shapeOf(const urdf::Geometry& geometry, const std::string& link, const std::string& what,
+                                   bool load_mesh, std::size_t max_mesh_bytes) {
+  rigid_body::CollisionShape shape;
+  switch (geometry.type) {
+    case urdf::Geometry::BOX: {
+      const auto& box = static_cast<const urdf::Box&>(geometry);
+      shape.type = rigid_body::ShapeType::kBox;
+      shape.size = Eigen::Vector3d(box.dim.x, box.dim.y, box.dim.z);
+      break;
+    }
+    case urdf::Geometry::SPHERE:
+      shape.type = rigid_body::ShapeType::kSphere;
+      shape.size.x() = static_cast<const urdf::Sphere&>(geometry).radius;
+      break;
+    case urdf::Geometry::CYLINDER: {
+      const auto& cylinder = static_cast<const urdf::Cylinder&>(geometry);
+      shape.type = rigid_body::ShapeType::kCylinder;
+      shape.size = Eigen::Vector3d(cylinder.radius, cylinder.length, 0.0);
+      break;
+    }
+    case urdf::Geometry::MESH: {
+      const auto& mesh = static_cast<const urdf::Mesh&>(geometry);
+      shape.type = rigid_body::ShapeType::kMesh;
+      if (!load_mesh) break;
+      if (mesh.scale.x != mesh.scale.y || mesh.scale.x != mesh.scale.z || !(mesh.scale.x > 0.0)) {
+        fail("link", XmlRpcValue(link), "its " + what + " mesh has a non-uniform or non-positive scale");
+      }
+      try {
+        std::vector<std::string> warnings;
+        shape.mesh = rigid_body::validatedClosedMesh(
+            rigid_body::transformed(rigid_body::loadMesh(meshPath(mesh.filename), max_mesh_bytes), mesh.scale.x), warnings);
+      } catch (const rigid_body::MeshError& error) {
+        fail("link", XmlRpcValue(link), "its " + what + " mesh '" + mesh.filename + "': " + error.what());
+      }
+      break;
+    }
+  }
+  return shape;
+}
+
+}  // namespace
+
+std::string readUrdfFile(const std::string& uri, std::size_t max_bytes) {
+  const std::string path = meshPath(uri);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) fail("urdf", XmlRpcValue(uri), "cannot open the file '" + path + "'");
+  const std::streamoff size = in.tellg();
+  if (size < 0 || static_cast<std::uint64_t>(size) > max_bytes) {
+    fail("urdf", XmlRpcValue(uri), "is not a readable file of at most " + std::to_string(max_bytes) + " bytes");
+  }
+  in.seekg(0);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+UrdfLink readUrdfLink(const std::string& xml, const std::string& link_name, std::size_t max_mesh_bytes) {
+  urdf::Model model;
+  if (!model.initString(xml)) fail("urdf", XmlRpcValue(std::string("...")), "does not parse as a URDF robot description");
+  const urdf::LinkConstSharedPtr link = model.getLink(link_name);
+  if (!link) fail("link", XmlRpcValue(link_name), "names no link of the robot description");
+  if (!link->inertial) fail("link", XmlRpcValue(link_name), "has no <inertial>: mass and inertia are needed");
+  const urdf::Inertial& inertial = *link->inertial;
+  UrdfLink out;
+  // The inertia is given about the centre of mass in the inertial frame (origin xyz rpy in the link frame);
+  // that frame becomes the body frame, so I_Bcm_B is the tensor as written.
+  Eigen::Matrix3d I;
+  I << inertial.ixx, inertial.ixy, inertial.ixz,  //
+      inertial.ixy, inertial.iyy, inertial.iyz,   //
+      inertial.ixz, inertial.iyz, inertial.izz;
+  try {
+    out.mass = rigid_body::MassProperties::fromInertia(inertial.mass, I);
+  } catch (const rigid_body::InvalidMassProperties& error) {
+    fail("link", XmlRpcValue(link_name), std::string("has a non-physical <inertial>: ") + error.what());
+  }
+  out.X_LB = toEigen(inertial.origin);
+  if (link->collision && link->collision->geometry) {
+    out.collision = shapeOf(*link->collision->geometry, link_name, "collision", true, max_mesh_bytes);
+    out.collision->pose = toEigen(link->collision->origin);
+  }
+  if (link->visual && link->visual->geometry) {
+    if (link->visual->geometry->type == urdf::Geometry::MESH) {
+      const auto& mesh = static_cast<const urdf::Mesh&>(*link->visual->geometry);
+      out.visual_mesh = mesh.filename;
+      out.visual_mesh_scale = mesh.scale.x;
+      out.X_LV = toEigen(link->visual->origin);
+    } else {
+      out.visual = shapeOf(*link->visual->geometry, link_name, "visual", false, max_mesh_bytes);
+      out.visual->pose = toEigen(link->visual->origin);
+    }
+  }
+  return out;
+}
+
+}  // namespace rigid_body_ros
