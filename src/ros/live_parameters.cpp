@@ -26,12 +26,17 @@ rigid_body_sim::RigidBodyConfig LiveParameters::fromNodeConfig(const NodeConfig&
   live.max_torque = limitTo(config.wrench_limits.max_torque);
   live.real_time_factor = config.real_time_factor;
   live.marker_rate = config.marker_rate;
+  // The noise is per axis at start-up; live, one value for every axis (it starts at the x axis's).
+  live.noise_position_stddev = config.noise.position_stddev.x();
+  live.noise_orientation_stddev = config.noise.orientation_stddev.x();
+  live.noise_linear_velocity_stddev = config.noise.linear_velocity_stddev.x();
+  live.noise_angular_velocity_stddev = config.noise.angular_velocity_stddev.x();
   return live;
 }
 
 LiveParameters::LiveParameters(const ros::NodeHandle& private_nh, NodeConfig& config, rigid_body::World& world,
-                               std::function<rigid_body::Nanoseconds()> now)
-    : config_(config), world_(world), now_(std::move(now)), current_(fromNodeConfig(config)) {
+                               Outputs& outputs, std::function<rigid_body::Nanoseconds()> now)
+    : config_(config), world_(world), outputs_(outputs), now_(std::move(now)), current_(fromNodeConfig(config)) {
   server_ = std::make_unique<dynamic_reconfigure::Server<rigid_body_sim::RigidBodyConfig>>(private_nh);
   // The server starts from the node's values (not the .cfg defaults), so the first call changes nothing.
   server_->updateConfig(current_);
@@ -69,6 +74,16 @@ void LiveParameters::onChange(rigid_body_sim::RigidBodyConfig& requested, uint32
   // The marker rate stays within the node's rate, as at start-up.
   requested.marker_rate = std::min(requested.marker_rate, config_.rate);
   config_.marker_rate = requested.marker_rate;
+  if (requested.noise_position_stddev != current_.noise_position_stddev ||
+      requested.noise_orientation_stddev != current_.noise_orientation_stddev ||
+      requested.noise_linear_velocity_stddev != current_.noise_linear_velocity_stddev ||
+      requested.noise_angular_velocity_stddev != current_.noise_angular_velocity_stddev) {
+    config_.noise.position_stddev.setConstant(requested.noise_position_stddev);
+    config_.noise.orientation_stddev.setConstant(requested.noise_orientation_stddev);
+    config_.noise.linear_velocity_stddev.setConstant(requested.noise_linear_velocity_stddev);
+    config_.noise.angular_velocity_stddev.setConstant(requested.noise_angular_velocity_stddev);
+    outputs_.setNoise(config_.noise);
+  }
   current_ = requested;
 }
 

@@ -62,4 +62,11 @@ void OdometryNoise::publish(const nav_msgs::Odometry& truth, const ros::Time& st
   }
 }
 
+void OdometryNoise::setStddevs(const NoiseConfig& noise) {
+  noise_.position_stddev = noise.position_stddev;
+  noise_.orientation_stddev = noise.orientation_stddev;
+  noise_.linear_velocity_stddev = noise.linear_velocity_stddev;
+  noise_.angular_velocity_stddev = noise.angular_velocity_stddev;
+}
+
 }  // namespace rigid_body_ros

@@ -95,6 +95,12 @@ void Outputs::advertise(ros::NodeHandle& nh, std::size_t body, uint32_t queue) {
   }
 }
 
+void Outputs::setNoise(const NoiseConfig& noise) {
+  for (Channel& channel : channels_) {
+    if (channel.noise) channel.noise->setStddevs(noise);
+  }
+}
+
 void Outputs::publishMeshFrames(const ros::Time& stamp) {
   std::vector<geometry_msgs::TransformStamped> mesh_frames;
   for (const BodyConfig& config : config_.bodies) {

@@ -58,7 +58,7 @@ SimulatorNode::SimulatorNode(const ros::NodeHandle& nh, const ros::NodeHandle& p
                   outputs_.publishClock(world_);
                   publish();
                 }),
-      live_(private_nh_, config_, world_, [this] { return now(); }) {}
+      live_(private_nh_, config_, world_, outputs_, [this] { return now(); }) {}
 
 void SimulatorNode::guarded(const std::function<void()>& tick) {
   // A tick must not take the node down: an exception from a library's own arithmetic (ros::Time, tf2,

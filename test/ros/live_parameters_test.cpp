@@ -11,14 +11,14 @@ namespace {
 
 using namespace test_helpers;
 
-bool setDouble(const std::string& name, double value) {
+bool setDouble(const std::string& name, double value, const std::string& node = "live/node") {
   dynamic_reconfigure::Reconfigure request;
   dynamic_reconfigure::DoubleParameter parameter;
   parameter.name = name;
   parameter.value = value;
   request.request.config.doubles.push_back(parameter);
-  return ros::service::waitForService("live/node/set_parameters", ros::Duration(10.0)) &&
-         ros::service::call("live/node/set_parameters", request);
+  return ros::service::waitForService(node + "/set_parameters", ros::Duration(10.0)) &&
+         ros::service::call(node + "/set_parameters", request);
 }
 
 double vz(const nav_msgs::Odometry& odom) { return worldVelocity(odom).z(); }
@@ -66,6 +66,24 @@ TEST(LiveParameters, AnOutOfRangeValueIsClampedByTheServerNotApplied) {
   ASSERT_TRUE(setDouble("linear_damping", -5.0));
   double value = -1.0;
   EXPECT_TRUE(waitUntil([&] { return ros::param::get("live/node/linear_damping", value) && value == 0.0; }));
+}
+
+TEST(LiveParameters, NoiseSetToZeroMakesTheNoisyOdometryTheTruth) {
+  ros::NodeHandle nh;
+  Recorder<nav_msgs::Odometry> truth(nh, "noisy/odom"), noisy(nh, "noisy/odom_noisy");
+  ASSERT_TRUE(noisy.waitForCount(3));
+  EXPECT_NE(position(noisy.messages.back()), position(truth.messages.back()));  // 1 cm of noise at start-up
+  ASSERT_TRUE(setDouble("noise_position_stddev", 0.0, "noisy/node"));
+  // From the change on, the noisy copy is the truth, and so is its declared covariance.
+  ASSERT_TRUE(waitUntil([&] { return !noisy.messages.empty() && noisy.messages.back().pose.covariance[0] == 0.0; }));
+  const std::size_t n = noisy.messages.size();
+  ASSERT_TRUE(noisy.waitForCount(n + 3));
+  const nav_msgs::Odometry& last = noisy.messages.back();
+  bool matched = false;
+  for (const nav_msgs::Odometry& t : truth.messages) {
+    if (t.header.stamp == last.header.stamp) matched = position(t) == position(last);
+  }
+  EXPECT_TRUE(matched) << "the noisy copy at its stamp is not the truth";
 }
 
 int main(int argc, char** argv) {

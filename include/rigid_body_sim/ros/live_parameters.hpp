@@ -1,5 +1,6 @@
 // dynamic_reconfigure on the node's private namespace (cfg/RigidBody.cfg): damping, gravity, the wrench
-// timeout and limits, the lockstep pace and the marker rate, changed while the node runs. A change reaches
+// timeout and limits, the lockstep pace, the noise of odom_noisy and the marker rate, changed while the node
+// runs. A change reaches
 // the core as a command stamped with its arrival, so it takes effect from the step of its arrival.
 #pragma once
 
@@ -10,6 +11,7 @@
 #include <memory>
 
 #include "rigid_body_sim/RigidBodyConfig.h"
+#include "rigid_body_sim/ros/outputs.hpp"
 #include "rigid_body_sim/ros/parameters.hpp"
 #include "rigid_body_sim/world.hpp"
 
@@ -18,7 +20,7 @@ namespace rigid_body_ros {
 class LiveParameters {
  public:
   /// `config` is the node's own, updated in place (the other parts read it each time); `now` the node's clock.
-  LiveParameters(const ros::NodeHandle& private_nh, NodeConfig& config, rigid_body::World& world,
+  LiveParameters(const ros::NodeHandle& private_nh, NodeConfig& config, rigid_body::World& world, Outputs& outputs,
                  std::function<rigid_body::Nanoseconds()> now);
 
   /// The server's view of a node configuration (for its initial values, and for tests).
@@ -29,6 +31,7 @@ class LiveParameters {
 
   NodeConfig& config_;
   rigid_body::World& world_;
+  Outputs& outputs_;
   std::function<rigid_body::Nanoseconds()> now_;
   rigid_body_sim::RigidBodyConfig current_;
   std::unique_ptr<dynamic_reconfigure::Server<rigid_body_sim::RigidBodyConfig>> server_;

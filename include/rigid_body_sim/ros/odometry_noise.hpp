@@ -19,6 +19,9 @@ class OdometryNoise {
   OdometryNoise(ros::NodeHandle& nh, const std::string& topic, uint32_t queue, const NoiseConfig& noise, double rate,
                 std::uint64_t stream);
 
+  /// New standard deviations (a live change); the seed's stream and the delay go on.
+  void setStddevs(const NoiseConfig& noise);
+
   /// Draws the noise onto a copy of `truth` and publishes what the delay lets through at `stamp`.
   void publish(const nav_msgs::Odometry& truth, const ros::Time& stamp);
 

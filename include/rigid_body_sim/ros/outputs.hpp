@@ -38,6 +38,9 @@ class Outputs {
 
   /// Messages withheld because a field was not finite (e.g. a kinetic energy that overflowed).
   std::uint64_t withheld() const { return withheld_; }
+  /// New noise standard deviations for every body's odom_noisy (nothing if the node started without noise).
+  void setNoise(const NoiseConfig& noise);
+
   /// Largest ||q| − 1| published for a body since the last reset.
   double maxNormError(std::size_t body) const { return channels_[body].max_norm_error; }
 
