@@ -19,7 +19,7 @@ class OdometryNoise {
   OdometryNoise(ros::NodeHandle& nh, const std::string& topic, uint32_t queue, const NoiseConfig& noise, double rate,
                 std::uint64_t stream);
 
-  /// New standard deviations (a live change); the seed's stream and the delay go on.
+  /// New standard deviations (a live change); the generator's stream and the delay go on.
   void setStddevs(const NoiseConfig& noise);
 
   /// Draws the noise onto a copy of `truth` and publishes what the delay lets through at `stamp`.
