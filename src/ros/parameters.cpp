@@ -408,9 +408,9 @@ void readOutputs(const XmlRpcValue& params, NodeConfig& config) {
   config.start_paused = readBool(params, "start_paused", false);
   const double default_marker_rate = std::min(20.0, config.rate);
   std::ostringstream marker_allowed;
-  marker_allowed << "must be a finite number in (0, rate = " << config.rate << "] [Hz]";
+  marker_allowed << "must be a finite number in [0.001, rate = " << config.rate << "] [Hz]";
   config.marker_rate = readNumber(params, "marker_rate", default_marker_rate,
-                                  [&](double r) { return r > 0.0 && r <= config.rate; }, marker_allowed.str());
+                                  [&](double r) { return r >= kMinRate && r <= config.rate; }, marker_allowed.str());
 }
 
 NoiseConfig readNoise(const XmlRpcValue& params) {

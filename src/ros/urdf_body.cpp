@@ -2,6 +2,7 @@
 
 #include <urdf/model.h>
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -75,16 +76,21 @@ rigid_body::CollisionShape shapeOf(const urdf::Geometry& geometry, const std::st
 
 std::string readUrdfFile(const std::string& uri, std::size_t max_bytes) {
   const std::string path = meshPath(uri);
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) fail("urdf", XmlRpcValue(uri), "cannot open the file '" + path + "'");
-  const std::streamoff size = in.tellg();
-  if (size < 0 || static_cast<std::uint64_t>(size) > max_bytes) {
+  // A regular file of a bounded size, read to exactly that size: a FIFO or a device (/dev/zero) would never end.
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) {
+    fail("urdf", XmlRpcValue(uri), "cannot open the file '" + path + "' (not a regular file, or missing)");
+  }
+  const std::uintmax_t size = std::filesystem::file_size(path, error);
+  if (error || size > max_bytes) {
     fail("urdf", XmlRpcValue(uri), "is not a readable file of at most " + std::to_string(max_bytes) + " bytes");
   }
-  in.seekg(0);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  std::ifstream in(path, std::ios::binary);
+  std::string text(static_cast<std::size_t>(size), '\0');
+  if (!in || !in.read(&text[0], static_cast<std::streamsize>(size))) {
+    fail("urdf", XmlRpcValue(uri), "cannot open the file '" + path + "'");
+  }
+  return text;
 }
 
 UrdfLink readUrdfLink(const std::string& xml, const std::string& link_name, std::size_t max_mesh_bytes) {

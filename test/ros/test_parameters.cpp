@@ -144,7 +144,7 @@ TEST(Parameters, EachInvalidValueNamesTheParameterAndTheRule) {
       {"rel_tolerance", XmlRpcValue(2), "parameter ~rel_tolerance = 2: must be a finite number in [1e-15, 1]"},
       {"world_frame", XmlRpcValue(std::string("/world")), "parameter ~world_frame = '/world': must be a non-empty tf2 frame id"},
       {"body_frame", XmlRpcValue(std::string("world")), "parameter ~body_frame = 'world': must differ from ~world_frame"},
-      {"marker_rate", XmlRpcValue(500.0), "parameter ~marker_rate = 500: must be a finite number in (0, rate = 100] [Hz]"},
+      {"marker_rate", XmlRpcValue(500.0), "parameter ~marker_rate = 500: must be a finite number in [0.001, rate = 100] [Hz]"},
   };
   for (const Case& c : cases) {
     XmlRpcValue params;
@@ -651,6 +651,10 @@ TEST(UrdfBody, BadLinksStopTheNodeNamingTheLink) {
   XmlRpcValue no_file = urdfBody("base_link");
   no_file["urdf"] = std::string("/nonexistent/robot.urdf");
   EXPECT_NE(errorOf(no_file).find("parameter ~urdf = '/nonexistent/robot.urdf': cannot open"), std::string::npos);
+  XmlRpcValue device = urdfBody("base_link");
+  device["urdf"] = std::string("/dev/zero");
+  EXPECT_NE(errorOf(device).find("parameter ~urdf = '/dev/zero': cannot open the file '/dev/zero' (not a regular file"),
+            std::string::npos);
   XmlRpcValue no_link;
   no_link["urdf"] = std::string(TEST_URDF_DIR "/offset_link.urdf");
   EXPECT_NE(errorOf(no_link).find("parameter ~link"), std::string::npos);
