@@ -176,7 +176,7 @@ void ContactStep::step(SceneBodies& bodies, const std::vector<char>& running, do
   detectPoints();
   // 2. Impacts that begin within the step, each alone on its bodies, are resolved at their time.
   if (settings_.event_location || settings_.continuous) {
-    findCandidates(bodies, running, h);
+    findCandidates(bodies, running);
     bool any = false;
     for (const Candidate& candidate : candidates_) any = resolveImpact(bodies, candidate, h) || any;
     if (any) {
@@ -207,7 +207,7 @@ void ContactStep::step(SceneBodies& bodies, const std::vector<char>& running, do
   }
 }
 
-void ContactStep::findCandidates(SceneBodies& bodies, const std::vector<char>& running, double h) {
+void ContactStep::findCandidates(SceneBodies& bodies, const std::vector<char>& running) {
   candidates_.clear();
   engaged_.clear();
   std::fill(engagement_.begin(), engagement_.end(), 0);
@@ -243,7 +243,6 @@ void ContactStep::findCandidates(SceneBodies& bodies, const std::vector<char>& r
                                             (world_->isBody(c.b) && engagement_[c.b] != 1);
                                    }),
                     candidates_.end());
-  (void)h;
 }
 
 double ContactStep::distanceAfter(SceneBodies& bodies, const Candidate& c, double tau, bool keep_states) {

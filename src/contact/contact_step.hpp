@@ -67,7 +67,7 @@ class ContactStep {
   void placeAll(const std::vector<State>& states);
   void detectPoints();
   bool restoreAfterFailedLocation(SceneBodies& bodies, const Candidate& candidate);
-  void findCandidates(SceneBodies& bodies, const std::vector<char>& running, double h);
+  void findCandidates(SceneBodies& bodies, const std::vector<char>& running);
   bool resolveImpact(SceneBodies& bodies, const Candidate& candidate, double h);
   double distanceAfter(SceneBodies& bodies, const Candidate& candidate, double tau, bool keep_states);
   void startSolverLists();
