@@ -190,6 +190,9 @@ std::optional<rigid_body::CollisionShape> readCollision(const XmlRpcValue& param
   shape.name = body.name.empty() ? body.body_frame : body.name;
   if (body.shape == "urdf" && (own || !find(params, "collision/shape"))) {
     // The link's own <collision>, posed in the body frame; a struct may still set the material.
+    if (!body.urdf_collision && !body.urdf_collision_problem.empty()) {
+      fail("link", XmlRpcValue(body.link), body.urdf_collision_problem);
+    }
     if (!body.urdf_collision) fail("collision", *value, "needs a shape: the link has no <collision>; give collision/shape");
     if (!own && find(params, "collision/size")) fail("collision/size", *find(params, "collision/size"), "needs collision/shape too");
     shape = *body.urdf_collision;

@@ -144,6 +144,7 @@ rigid_body::MassProperties readUrdfMassProperties(const XmlRpcValue& params, Bod
   config.size.clear();
   config.X_BP = link.X_LB.inverse();
   config.published_offset = !link.X_LB.isApprox(Eigen::Isometry3d::Identity(), 0.0);
+  config.urdf_collision_problem = link.collision_problem;
   if (link.collision) {
     config.urdf_collision = link.collision;
     config.urdf_collision->pose = config.X_BP * link.collision->pose;  // X_BC = X_BL X_LC

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include "parameter_values.hpp"
 #include "rigid_body_sim/mesh.hpp"
@@ -113,9 +114,20 @@ UrdfLink readUrdfLink(const std::string& xml, const std::string& link_name, std:
     fail("link", XmlRpcValue(link_name), std::string("has a non-physical <inertial>: ") + error.what());
   }
   out.X_LB = toEigen(inertial.origin);
+  // Offsets within the contact world's 1e6 m (docs/contact.md), like every other pose of a scene.
+  if (!(out.X_LB.translation().norm() <= 1e6)) {
+    fail("link", XmlRpcValue(link_name), "has an <inertial> origin beyond 1e6 m (or not finite)");
+  }
   if (link->collision && link->collision->geometry) {
     out.collision = shapeOf(*link->collision->geometry, link_name, "collision", true, max_mesh_bytes);
     out.collision->pose = toEigen(link->collision->origin);
+    try {
+      rigid_body::validateShape(*out.collision, false);
+    } catch (const std::invalid_argument& error) {
+      // Only a problem if the body collides with it (collision: true): kept to say so then.
+      out.collision_problem = std::string("has an unusable <collision>: ") + error.what();
+      out.collision.reset();
+    }
   }
   if (link->visual && link->visual->geometry) {
     if (link->visual->geometry->type == urdf::Geometry::MESH) {

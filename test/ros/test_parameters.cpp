@@ -655,6 +655,15 @@ TEST(UrdfBody, BadLinksStopTheNodeNamingTheLink) {
   device["urdf"] = std::string("/dev/zero");
   EXPECT_NE(errorOf(device).find("parameter ~urdf = '/dev/zero': cannot open the file '/dev/zero' (not a regular file"),
             std::string::npos);
+  XmlRpcValue far = urdfBody("far");
+  far["urdf"] = std::string(TEST_URDF_DIR "/bad_links.urdf");
+  EXPECT_NE(errorOf(far).find("parameter ~link = 'far': has an <inertial> origin beyond 1e6 m"), std::string::npos);
+  XmlRpcValue flat = urdfBody("flat_box");
+  flat["urdf"] = std::string(TEST_URDF_DIR "/bad_links.urdf");
+  flat["collision"] = true;
+  EXPECT_NE(errorOf(flat).find("parameter ~link = 'flat_box': has an unusable <collision>"), std::string::npos);
+  flat["collision"] = false;  // not used: not a problem
+  EXPECT_EQ(errorOf(flat), "");
   XmlRpcValue no_link;
   no_link["urdf"] = std::string(TEST_URDF_DIR "/offset_link.urdf");
   EXPECT_NE(errorOf(no_link).find("parameter ~link"), std::string::npos);

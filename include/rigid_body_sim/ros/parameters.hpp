@@ -73,6 +73,7 @@ struct BodyConfig {
   Eigen::Isometry3d X_BP = Eigen::Isometry3d::Identity();
   bool published_offset = false;                             ///< X_BP is not the identity
   std::optional<rigid_body::CollisionShape> urdf_collision;  ///< the link's <collision>, posed in B
+  std::string urdf_collision_problem;                        ///< why the link's <collision> cannot be used
   std::optional<rigid_body::CollisionShape> visual;          ///< the link's <visual> primitive, posed in P
   std::string visual_mesh;                                   ///< a mesh <visual>'s filename
   double visual_mesh_scale = 1.0;

@@ -17,6 +17,7 @@ struct UrdfLink {
   /// The inertial frame, which becomes the body frame B (origin at the centre of mass), in the link frame L.
   Eigen::Isometry3d X_LB = Eigen::Isometry3d::Identity();
   std::optional<rigid_body::CollisionShape> collision;  ///< the first <collision>, its pose in L
+  std::string collision_problem;                        ///< why a <collision> cannot be used, if it cannot
   std::optional<rigid_body::CollisionShape> visual;     ///< the first <visual> (a primitive), its pose in L
   std::string visual_mesh;                               ///< a mesh visual's filename as written (package://…)
   double visual_mesh_scale = 1.0;
