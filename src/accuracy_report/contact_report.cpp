@@ -47,12 +47,6 @@ const std::vector<Setting> kSettings = {{"located, 20 iterations", true, 20},
                                         {"at step end, 20 iterations", false, 20},
                                         {"located, 5 iterations", true, 5}};
 
-double cpuSeconds() {
-  timespec now{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
-  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
-}
-
 CollisionShape shape(ShapeType type, const Eigen::Vector3d& size, double friction, double restitution) {
   return rigid_body::reference::collisionShape(type, size, friction, restitution);
 }

@@ -28,13 +28,6 @@ constexpr double kDopriOutputStep = 0.01;
 constexpr double kLongRunStep = 0.05;
 constexpr int kGrowthSamples = 1000;
 
-
-double cpuSeconds() {
-  timespec now;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
-  return now.tv_sec + 1e-9 * now.tv_nsec;
-}
-
 double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   const size_t n = values.size();
@@ -91,6 +84,12 @@ std::string shell(const std::string& command) {
 }
 
 }  // namespace
+
+double cpuSeconds() {
+  timespec now;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+  return now.tv_sec + 1e-9 * now.tv_nsec;
+}
 
 std::string clockDescription() {
   timespec resolution;

@@ -82,6 +82,8 @@ void writeStabilityCsv(const Options& options, const std::vector<StabilityRow>& 
 
 /// "CPU, cores, compiler, flags" of this machine, for the report.
 std::string machineDescription();
+/// CPU time of this process [s] (CLOCK_PROCESS_CPUTIME_ID): what every timing of the report reads.
+double cpuSeconds();
 /// The CPU-time clock the timings use: its resolution and the cost of one read, measured now.
 std::string clockDescription();
 /// The figures; false if gnuplot failed on any.

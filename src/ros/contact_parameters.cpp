@@ -21,7 +21,6 @@ const char* const kCollisionKeys[] = {"shape", "size", "mesh", "scale", "restitu
 
 namespace {
 
-constexpr double kQuaternionNormTolerance = 1e-3;
 
 std::set<std::string> keySet(const char* const* keys) {
   std::set<std::string> set;
@@ -110,14 +109,7 @@ Eigen::Isometry3d readPose(const XmlRpcValue& params, const std::string& prefix)
   if (!(pose.translation().norm() <= 1e6)) {
     fail(prefix + "pose/position", *find(params, prefix + "pose/position"), "must be within 1e6 m of the origin [m]");
   }
-  const std::vector<double> q = readNumbers(params, prefix + "pose/orientation", {0.0, 0.0, 0.0, 1.0}, 4,
-                                            "must be a unit quaternion [x, y, z, w] of 4 finite numbers");
-  const Eigen::Quaterniond orientation(q[3], q[0], q[1], q[2]);
-  if (std::abs(orientation.norm() - 1.0) > kQuaternionNormTolerance) {
-    fail(prefix + "pose/orientation", *find(params, prefix + "pose/orientation"),
-         "must be a unit quaternion [x, y, z, w]: |q| within 1e-3 of 1");
-  }
-  pose.linear() = orientation.normalized().toRotationMatrix();
+  pose.linear() = readQuaternion(params, prefix + "pose/orientation").normalized().toRotationMatrix();
   return pose;
 }
 

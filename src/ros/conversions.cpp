@@ -53,9 +53,7 @@ FrameMotion publishedFrame(const rigid_body::MassProperties& mass, const rigid_b
   return frame;
 }
 
-void fillOdometry(const rigid_body::MassProperties& mass, const rigid_body::State& state, const Eigen::Isometry3d& X_BP,
-                  nav_msgs::Odometry& odom) {
-  const FrameMotion frame = publishedFrame(mass, state, X_BP);
+void fillOdometry(const FrameMotion& frame, nav_msgs::Odometry& odom) {
   odom.pose.pose.position = tf2::toMsg(frame.p_WP);
   odom.pose.pose.orientation = tf2::toMsg(frame.q_WP);
   const Eigen::Matrix3d R_PW = frame.q_WP.toRotationMatrix().transpose();
@@ -63,19 +61,16 @@ void fillOdometry(const rigid_body::MassProperties& mass, const rigid_body::Stat
   tf2::toMsg(Eigen::Vector3d(R_PW * frame.w_W), odom.twist.twist.angular);
 }
 
-void fillTransform(const rigid_body::MassProperties& mass, const rigid_body::State& state,
-                   const Eigen::Isometry3d& X_BP, geometry_msgs::TransformStamped& transform) {
-  const FrameMotion frame = publishedFrame(mass, state, X_BP);
+void fillTransform(const FrameMotion& frame, geometry_msgs::TransformStamped& transform) {
   transform.transform.translation.x = frame.p_WP.x();
   transform.transform.translation.y = frame.p_WP.y();
   transform.transform.translation.z = frame.p_WP.z();
   transform.transform.rotation = tf2::toMsg(frame.q_WP);
 }
 
-void fillStateMessage(const rigid_body::Model& model, const rigid_body::State& state, const Eigen::Isometry3d& X_BP,
+void fillStateMessage(const rigid_body::Model& model, const rigid_body::State& state, const FrameMotion& frame,
                       const rigid_body::AppliedWrench& input, rigid_body_sim::RigidBodyState& message) {
   fillStateMessage(model, state, input, message);
-  const FrameMotion frame = publishedFrame(model.mass, state, X_BP);
   message.pose.position = tf2::toMsg(frame.p_WP);
   message.pose.orientation = tf2::toMsg(frame.q_WP);
   tf2::toMsg(frame.v_WP_W, message.twist.linear);

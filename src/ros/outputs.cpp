@@ -4,6 +4,7 @@
 #include <tf2_eigen/tf2_eigen.h>
 
 #include <cmath>
+#include <optional>
 
 #include "rigid_body_sim/kinematics.hpp"
 #include "rigid_body_sim/ros/conversions.hpp"
@@ -142,7 +143,7 @@ void Outputs::publishArray(const rigid_body::World& world, const ros::Time& stam
     nav_msgs::Odometry& odom = channels_[body].odom_message;
     odom.header.stamp = stamp;
     if (config_.bodies[body].published_offset) {
-      fillOdometry(scene.model(body).mass, scene.state(body), config_.bodies[body].X_BP, odom);
+      fillOdometry(publishedFrame(scene.model(body).mass, scene.state(body), config_.bodies[body].X_BP), odom);
     } else {
       fillOdometry(scene.model(body).mass, scene.state(body), odom);
     }
@@ -183,10 +184,15 @@ void Outputs::publishBody(const rigid_body::World& world, std::size_t body, cons
   const rigid_body::Scene& scene = world.scene();
   const rigid_body::State& state = scene.state(body);  // finite: the scene keeps the last good state
   channel.max_norm_error = std::max(channel.max_norm_error, std::abs(rigid_body::quaternionNormError(state)));
+  // A URDF body publishes its link frame: its pose and twist made once for tf, odometry and state.
+  std::optional<FrameMotion> frame;
+  if (config_.bodies[body].published_offset) {
+    frame = publishedFrame(scene.model(body).mass, state, config_.bodies[body].X_BP);
+  }
   if (config_.publish.tf) {
     transforms_[body].header.stamp = stamp;
-    if (config_.bodies[body].published_offset) {
-      fillTransform(scene.model(body).mass, state, config_.bodies[body].X_BP, transforms_[body]);
+    if (frame) {
+      fillTransform(*frame, transforms_[body]);
     } else {
       fillTransform(state, transforms_[body]);
     }
@@ -194,8 +200,8 @@ void Outputs::publishBody(const rigid_body::World& world, std::size_t body, cons
   const bool odom = channel.odom_subscribers > 0;
   if (odom || channel.noise) {
     channel.odom_message.header.stamp = stamp;
-    if (config_.bodies[body].published_offset) {
-      fillOdometry(scene.model(body).mass, state, config_.bodies[body].X_BP, channel.odom_message);
+    if (frame) {
+      fillOdometry(*frame, channel.odom_message);
     } else {
       fillOdometry(scene.model(body).mass, state, channel.odom_message);
     }
@@ -211,8 +217,8 @@ void Outputs::publishBody(const rigid_body::World& world, std::size_t body, cons
   const bool applied_wrench = channel.applied_wrench_subscribers > 0;
   if (channel.state_subscribers > 0 || applied_wrench) {
     channel.state_message.header.stamp = stamp;
-    if (config_.bodies[body].published_offset) {
-      fillStateMessage(scene.model(body), state, config_.bodies[body].X_BP, scene.input(body), channel.state_message);
+    if (frame) {
+      fillStateMessage(scene.model(body), state, *frame, scene.input(body), channel.state_message);
     } else {
       fillStateMessage(scene.model(body), state, scene.input(body), channel.state_message);
     }

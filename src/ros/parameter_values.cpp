@@ -7,6 +7,9 @@ namespace rigid_body_ros {
 namespace parameter_values {
 
 namespace {
+
+// A hand-typed quaternion such as [0, 0, 0.7071, 0.7071] is accepted and normalised if |q| is this close to 1.
+constexpr double kQuaternionNormTolerance = 1e-3;
 // roscpp turns a rosrun argument _size:=[0.4,0.2,0.1] into the string "[0.4,0.2,0.1]" (it parses only
 // scalars), so a list may come as text: "[a, b, ...]" of numbers becomes an XmlRpc array.
 bool parseListText(const std::string& text, XmlRpcValue& array) {
@@ -120,6 +123,17 @@ Eigen::Vector3d readVector3(const XmlRpcValue& params, const std::string& name, 
   const std::vector<double> v =
       readNumbers(params, name, {0.0, 0.0, 0.0}, 3, "must be a list of 3 finite numbers [x, y, z] " + unit);
   return Eigen::Vector3d(v[0], v[1], v[2]);
+}
+
+Eigen::Quaterniond readQuaternion(const XmlRpcValue& params, const std::string& name) {
+  const std::vector<double> q = readNumbers(params, name, {0.0, 0.0, 0.0, 1.0}, 4,
+                                            "must be a unit quaternion [x, y, z, w] of 4 finite numbers");
+  const Eigen::Quaterniond orientation(q[3], q[0], q[1], q[2]);
+  if (std::abs(orientation.norm() - 1.0) > kQuaternionNormTolerance) {
+    fail(name, *find(params, name),
+         "must be a unit quaternion [x, y, z, w]: |q| must be within 1e-3 of 1 (it is then normalised)");
+  }
+  return orientation;
 }
 
 std::string readString(const XmlRpcValue& params, const std::string& name, const std::string& fallback,

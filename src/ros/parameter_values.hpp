@@ -5,6 +5,7 @@
 #include <xmlrpcpp/XmlRpcValue.h>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cmath>
 #include <set>
 #include <string>
@@ -45,6 +46,9 @@ int readInteger(const XmlRpcValue& params, const std::string& name, int fallback
 std::vector<double> readNumbers(const XmlRpcValue& params, const std::string& name, std::vector<double> fallback,
                                 size_t length, const std::string& allowed);
 Eigen::Vector3d readVector3(const XmlRpcValue& params, const std::string& name, const std::string& unit);
+/// A quaternion [x, y, z, w] (identity if unset) whose norm is within 1e-3 of 1, as given (the caller
+/// normalises): a hand-typed [0, 0, 0.7071, 0.7071] is accepted.
+Eigen::Quaterniond readQuaternion(const XmlRpcValue& params, const std::string& name);
 std::string readString(const XmlRpcValue& params, const std::string& name, const std::string& fallback,
                        const std::string& allowed);
 /// A non-empty tf2 frame id without a leading '/' or spaces.

@@ -40,8 +40,6 @@ constexpr double kMinRate = 1e-3;
 constexpr double kMinDt = 1e-6;
 // The longest noise/delay [s]: the delay queue holds delay × rate messages.
 constexpr double kMaxNoiseDelay = 3600.0;
-// A hand-typed quaternion such as [0, 0, 0.7071, 0.7071] is accepted and normalised if |q| is this close to 1.
-constexpr double kQuaternionNormTolerance = 1e-3;
 
 // The keys of one body (flat at the top level, or in each item of ~bodies) and the scene-wide keys.
 const std::set<std::string> kBodyNames = {
@@ -60,6 +58,14 @@ const std::set<std::string> kPublishNames = {"tf", "odom", "state", "applied_wre
 const std::set<std::string> kNoiseNames = {"position_stddev", "orientation_stddev", "linear_velocity_stddev",
                                            "angular_velocity_stddev", "seed", "delay"};
 const std::set<std::string> kInitialNames = {"position", "orientation", "linear_velocity", "angular_velocity"};
+
+// ~max_mesh_bytes: the largest mesh (or URDF) file a body reads.
+std::size_t readMaxMeshBytes(const XmlRpcValue& params) {
+  return static_cast<std::size_t>(
+      readNumber(params, "max_mesh_bytes", static_cast<double>(rigid_body::kDefaultMaxMeshBytes),
+                 [](double b) { return b >= 1.0 && b <= kMaxMeshBytesLimit; },
+                 "must be a number of bytes in [1, 4e9] (the largest mesh file read)"));
+}
 
 // shape: mesh. The body frame is the mesh's centre of mass, with the mesh's axes or its principal axes.
 rigid_body::MassProperties readMeshMassProperties(const XmlRpcValue& params, BodyConfig& config) {
@@ -93,10 +99,7 @@ rigid_body::MassProperties readMeshMassProperties(const XmlRpcValue& params, Bod
   if (options.samples > kMaxSamples) {
     fail("samples", *find(params, "samples"), "must be an integer in [1, 10000000] (points drawn for inertia_method sampling)");
   }
-  const std::size_t max_bytes = static_cast<std::size_t>(
-      readNumber(params, "max_mesh_bytes", static_cast<double>(rigid_body::kDefaultMaxMeshBytes),
-                 [](double b) { return b >= 1.0 && b <= kMaxMeshBytesLimit; },
-                 "must be a number of bytes in [1, 4e9] (the largest mesh file read)"));
+  const std::size_t max_bytes = readMaxMeshBytes(params);
   const bool principal_axes = readBool(params, "principal_axes", false);
   try {
     config.mesh = rigid_body::transformed(rigid_body::loadMesh(config.mesh_path, max_bytes), scale);
@@ -126,10 +129,7 @@ rigid_body::MassProperties readUrdfMassProperties(const XmlRpcValue& params, Bod
   }
   config.link = readString(params, "link", "", "must be the name of a link of the robot description");
   if (config.link.empty()) fail("link", XmlRpcValue(std::string()), "must be set with ~urdf or ~robot_description");
-  const std::size_t max_bytes = static_cast<std::size_t>(
-      readNumber(params, "max_mesh_bytes", static_cast<double>(rigid_body::kDefaultMaxMeshBytes),
-                 [](double b) { return b >= 1.0 && b <= kMaxMeshBytesLimit; },
-                 "must be a number of bytes in [1, 4e9] (the largest mesh file read)"));
+  const std::size_t max_bytes = readMaxMeshBytes(params);
   std::string xml;
   if (find(params, "urdf")) {
     xml = readUrdfFile(readString(params, "urdf", "", "must be a URDF file path or package:// URI"), max_bytes);
@@ -241,13 +241,7 @@ BodyConfig parseBody(const XmlRpcValue& params, const NodeConfig& scene, const s
   body.wrench_input = readBool(params, "wrench_input", true);
 
   const Eigen::Vector3d position = readVector3(params, "initial/position", "[m]");
-  const std::vector<double> q = readNumbers(params, "initial/orientation", {0.0, 0.0, 0.0, 1.0}, 4,
-                                            "must be a unit quaternion [x, y, z, w] of 4 finite numbers");
-  const Eigen::Quaterniond orientation(q[3], q[0], q[1], q[2]);
-  if (std::abs(orientation.norm() - 1.0) > kQuaternionNormTolerance) {
-    fail("initial/orientation", *find(params, "initial/orientation"),
-         "must be a unit quaternion [x, y, z, w]: |q| must be within 1e-3 of 1 (it is then normalised)");
-  }
+  const Eigen::Quaterniond orientation = readQuaternion(params, "initial/orientation");
   body.initial_linear_velocity_W = readVector3(params, "initial/linear_velocity", "[m/s], world axes");
   body.initial_angular_velocity_B = readVector3(params, "initial/angular_velocity", "[rad/s], body axes");
   if (body.published_offset) {

@@ -112,8 +112,8 @@ TEST(Conversions, ThePublishedFramesTwistIsTheDerivativeOfItsPose) {
   EXPECT_LT((w - now.w_W).norm(), 1e-8);
   // The odometry carries both in P's axes.
   nav_msgs::Odometry odom;
-  fillOdometry(mass, scene.state(), X_BP, odom);
   const FrameMotion last = publishedFrame(mass, scene.state(), X_BP);
+  fillOdometry(last, odom);
   Eigen::Vector3d v_P;
   tf2::fromMsg(odom.twist.twist.linear, v_P);
   EXPECT_LT((last.q_WP * v_P - last.v_WP_W).norm(), 1e-12);

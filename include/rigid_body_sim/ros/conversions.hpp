@@ -56,19 +56,17 @@ struct FrameMotion {
 FrameMotion publishedFrame(const rigid_body::MassProperties& mass, const rigid_body::State& state,
                            const Eigen::Isometry3d& X_BP);
 /// Odometry, tf and the state message of the published frame P instead of B (pose of P, twist of P's
-/// origin; the state's momenta stay about the centre of mass).
-void fillOdometry(const rigid_body::MassProperties& mass, const rigid_body::State& state, const Eigen::Isometry3d& X_BP,
-                  nav_msgs::Odometry& odom);
-void fillTransform(const rigid_body::MassProperties& mass, const rigid_body::State& state,
-                   const Eigen::Isometry3d& X_BP, geometry_msgs::TransformStamped& transform);
+/// origin; the state's momenta stay about the centre of mass), from publishedFrame's result.
+void fillOdometry(const FrameMotion& frame, nav_msgs::Odometry& odom);
+void fillTransform(const FrameMotion& frame, geometry_msgs::TransformStamped& transform);
+void fillStateMessage(const rigid_body::Model& model, const rigid_body::State& state, const FrameMotion& frame,
+                      const rigid_body::AppliedWrench& input, rigid_body_sim::RigidBodyState& message);
 
 /// Translation and rotation of the world → body transform.
 void fillTransform(const rigid_body::State& state, geometry_msgs::TransformStamped& transform);
 
 /// Every field of RigidBodyState but the header and child_frame_id. `input` is the commanded wrench,
 /// reported in world axes at the current orientation.
-void fillStateMessage(const rigid_body::Model& model, const rigid_body::State& state, const Eigen::Isometry3d& X_BP,
-                      const rigid_body::AppliedWrench& input, rigid_body_sim::RigidBodyState& message);
 void fillStateMessage(const rigid_body::Model& model, const rigid_body::State& state,
                       const rigid_body::AppliedWrench& input, rigid_body_sim::RigidBodyState& message);
 
