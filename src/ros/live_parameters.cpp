@@ -37,7 +37,8 @@ rigid_body_sim::RigidBodyConfig LiveParameters::fromNodeConfig(const NodeConfig&
 LiveParameters::LiveParameters(const ros::NodeHandle& private_nh, NodeConfig& config, rigid_body::World& world,
                                Outputs& outputs, std::function<rigid_body::Nanoseconds()> now)
     : config_(config), world_(world), outputs_(outputs), now_(std::move(now)), current_(fromNodeConfig(config)) {
-  server_ = std::make_unique<dynamic_reconfigure::Server<rigid_body_sim::RigidBodyConfig>>(private_nh);
+  server_ = std::make_unique<dynamic_reconfigure::Server<rigid_body_sim::RigidBodyConfig>>(
+      mutex_, ros::NodeHandle(private_nh, kLiveNamespace));
   // The server starts from the node's values (not the .cfg defaults), so the first call changes nothing.
   server_->updateConfig(current_);
   server_->setCallback([this](rigid_body_sim::RigidBodyConfig& requested, uint32_t level) { onChange(requested, level); });

@@ -51,8 +51,8 @@ const std::set<std::string> kSceneNames = {
     "max_body_steps_per_tick", "max_body_steps_per_request", "publish_tf",
     "publish", "abs_tolerance", "rel_tolerance", "max_force", "max_torque", "max_energy_growth", "lockstep",
     "real_time_factor", "start_paused", "noise", "environment", "contact", "marker_rate",
-    // Written by the node's own dynamic_reconfigure server (live gravity); at start-up ~gravity is the one read.
-    "gravity_x", "gravity_y", "gravity_z"};
+    // The live parameters' namespace (dynamic_reconfigure writes its values there); not read at start-up.
+    kLiveNamespace};
 const std::set<std::string> kPublishNames = {"tf", "odom", "state", "applied_wrench", "body_services",
                                              "per_body_topics"};
 const std::set<std::string> kNoiseNames = {"position_stddev", "orientation_stddev", "linear_velocity_stddev",

@@ -5,6 +5,7 @@
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 
+#include "rigid_body_sim/ros/parameters.hpp"
 #include "test_helpers.hpp"
 
 namespace {
@@ -12,13 +13,14 @@ namespace {
 using namespace test_helpers;
 
 bool setDouble(const std::string& name, double value, const std::string& node = "live/node") {
+  const std::string server = node + "/live";
   dynamic_reconfigure::Reconfigure request;
   dynamic_reconfigure::DoubleParameter parameter;
   parameter.name = name;
   parameter.value = value;
   request.request.config.doubles.push_back(parameter);
-  return ros::service::waitForService(node + "/set_parameters", ros::Duration(10.0)) &&
-         ros::service::call(node + "/set_parameters", request);
+  return ros::service::waitForService(server + "/set_parameters", ros::Duration(10.0)) &&
+         ros::service::call(server + "/set_parameters", request);
 }
 
 double vz(const nav_msgs::Odometry& odom) { return worldVelocity(odom).z(); }
@@ -65,7 +67,7 @@ TEST(LiveParameters, AnOutOfRangeValueIsClampedByTheServerNotApplied) {
   ASSERT_TRUE(odom.waitForCount(2));
   ASSERT_TRUE(setDouble("linear_damping", -5.0));
   double value = -1.0;
-  EXPECT_TRUE(waitUntil([&] { return ros::param::get("live/node/linear_damping", value) && value == 0.0; }));
+  EXPECT_TRUE(waitUntil([&] { return ros::param::get("live/node/live/linear_damping", value) && value == 0.0; }));
 }
 
 TEST(LiveParameters, NoiseSetToZeroMakesTheNoisyOdometryTheTruth) {
@@ -84,6 +86,23 @@ TEST(LiveParameters, NoiseSetToZeroMakesTheNoisyOdometryTheTruth) {
     if (t.header.stamp == last.header.stamp) matched = position(t) == position(last);
   }
   EXPECT_TRUE(matched) << "the noisy copy at its stamp is not the truth";
+}
+
+TEST(LiveParameters, EveryNodeStartsAgainFromWhatItLeftOnTheParameterServer) {
+  // A respawned node (or a second rosrun against the same master) reads its private namespace as the last run
+  // left it, servers' write-backs included: the start-up parser must take it. Checked after live changes.
+  ASSERT_TRUE(setDouble("linear_damping", 0.25, "listed/node"));
+  ASSERT_TRUE(setDouble("max_force", 0.0, "live/node"));  // 0: no limit, as dynamic_reconfigure writes it
+  for (const std::string node : {"live/node", "noisy/node", "listed/node"}) {
+    XmlRpc::XmlRpcValue params;
+    ASSERT_TRUE(ros::param::get(node, params)) << node;
+    try {
+      const rigid_body_ros::NodeConfig config = rigid_body_ros::parseConfig(params);
+      EXPECT_TRUE(config.unknown_parameters.empty()) << node << ": " << config.unknown_parameters.front();
+    } catch (const std::exception& error) {
+      ADD_FAILURE() << node << " would not start again: " << error.what();
+    }
+  }
 }
 
 int main(int argc, char** argv) {

@@ -1,12 +1,18 @@
-// dynamic_reconfigure on the node's private namespace (cfg/RigidBody.cfg): damping, gravity, the wrench
-// timeout and limits, the lockstep pace, the noise of odom_noisy and the marker rate, changed while the node
-// runs. A change reaches
-// the core as a command stamped with its arrival, so it takes effect from the step of its arrival.
+// dynamic_reconfigure under the node's private namespace, as ~live (cfg/RigidBody.cfg): damping, gravity, the
+// wrench timeout and limits, the lockstep pace, the noise of odom_noisy and the marker rate, changed while the
+// node runs. A change reaches the core as a command stamped with its arrival, so it takes effect from the step
+// of its arrival.
+//
+// Why ~live and not ~ itself: the server writes every value it holds back to the parameter server, and a
+// node that starts again (respawn, a second rosrun) reads its start-up parameters from there. Under ~ those
+// write-backs would be taken for start-up parameters (a damping beside ~bodies, max_force 0 for "no limit"),
+// and the restart would fail.
 #pragma once
 
 #include <dynamic_reconfigure/server.h>
 #include <ros/ros.h>
 
+#include <boost/thread/recursive_mutex.hpp>
 #include <functional>
 #include <memory>
 
@@ -34,6 +40,7 @@ class LiveParameters {
   Outputs& outputs_;
   std::function<rigid_body::Nanoseconds()> now_;
   rigid_body_sim::RigidBodyConfig current_;
+  boost::recursive_mutex mutex_;  // the server's: given to it so that our updateConfig takes it too
   std::unique_ptr<dynamic_reconfigure::Server<rigid_body_sim::RigidBodyConfig>> server_;
 };
 

@@ -24,6 +24,9 @@ class NodeHandle;
 
 namespace rigid_body_ros {
 
+/// The private sub-namespace of the live parameters (dynamic_reconfigure), ~live: apart from the start-up ones.
+inline constexpr const char* kLiveNamespace = "live";
+
 /// An invalid parameter; what() is the whole message, e.g.
 /// "parameter ~mass = -1: must be a finite number > 0 [kg]".
 class ParameterError : public std::runtime_error {
