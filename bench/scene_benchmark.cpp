@@ -5,6 +5,7 @@
 //
 // The scene is the swarm's: bodies cycling through box, sphere and cylinder with spin, zero g, half of them
 // pushed by a constant wrench. One iteration is one tick of the node's default timing: 10 steps of 1 ms.
+// The threaded cases step the same scene on every core (Scene::setThreads(0)), timed by the wall clock.
 #include <benchmark/benchmark.h>
 
 #include <vector>
@@ -47,9 +48,10 @@ Scene swarm(std::size_t bodies, IntegratorType type) {
   return simulation;
 }
 
-void stepScene(benchmark::State& bench, IntegratorType type) {
+void stepScene(benchmark::State& bench, IntegratorType type, std::size_t threads) {
   const auto bodies = static_cast<std::size_t>(bench.range(0));
   Scene simulation = swarm(bodies, type);
+  simulation.setThreads(threads);
   for (auto _ : bench) {
     simulation.step(kStepsPerTick);
     benchmark::DoNotOptimize(simulation.state(bodies - 1));
@@ -84,9 +86,14 @@ void updateWorld(benchmark::State& bench, IntegratorType type) {
 
 int registerAll() {
   for (IntegratorType type : {IntegratorType::kSemiImplicitEuler, IntegratorType::kRk4}) {
-    benchmark::RegisterBenchmark(("scene/" + integratorName(type)).c_str(), stepScene, type)
+    benchmark::RegisterBenchmark(("scene/" + integratorName(type)).c_str(), stepScene, type, 1)
         ->RangeMultiplier(10)
         ->Range(1, 10000)
+        ->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark(("threaded/" + integratorName(type)).c_str(), stepScene, type, 0)
+        ->RangeMultiplier(10)
+        ->Range(100, 10000)
+        ->UseRealTime()
         ->Unit(benchmark::kMicrosecond);
     benchmark::RegisterBenchmark(("world/" + integratorName(type)).c_str(), updateWorld, type)
         ->RangeMultiplier(10)

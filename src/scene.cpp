@@ -56,6 +56,13 @@ Scene::Scene(const std::vector<BodyDefinition>& bodies, IntegratorType integrato
   for (std::size_t body = 0; body < bodies.size(); ++body) assemble(body);
   inputs_.assign(bodies.size(), AppliedWrench());
   integrators_.assign(bodies.size(), Integrator(integrator, settings));
+  pool_ = std::make_unique<ThreadPool>(1);
+}
+
+void Scene::setThreads(std::size_t threads, std::size_t bodies_per_block) {
+  bodies_per_block_ = std::max<std::size_t>(1, bodies_per_block);
+  const std::size_t resolved = ThreadPool::resolve(threads);
+  if (resolved != pool_->threads()) pool_ = std::make_unique<ThreadPool>(resolved);
 }
 
 Scene::~Scene() = default;
@@ -112,7 +119,29 @@ std::size_t Scene::runningBodies() const {
 SceneStepResult Scene::step(std::int64_t steps) {
   SceneStepResult result;
   if (steps <= 0) return result;
-  for (std::size_t body = 0; body < states_.size(); ++body) {
+  const std::size_t bodies = states_.size();
+  const std::size_t per_block = bodies_per_block_;
+  const std::size_t blocks = (bodies + per_block - 1) / per_block;
+  if (pool_->threads() > 1 && blocks > 1) {
+    // Every block reports into its own slot; merged in block order, the result is the one-thread result.
+    block_results_.assign(blocks, SceneStepResult());
+    pool_->parallelFor(blocks, [&](std::size_t block) {
+      stepBodies(block * per_block, std::min(bodies, (block + 1) * per_block), steps, block_results_[block]);
+    });
+    for (const SceneStepResult& block : block_results_) {
+      result.steps = std::max(result.steps, block.steps);
+      if (result.status == StepStatus::kOk) result.status = block.status;
+      result.diverged = result.diverged || block.diverged;
+    }
+  } else {
+    stepBodies(0, bodies, steps, result);
+  }
+  if (contact_) stepColliders(steps, result);
+  return result;
+}
+
+void Scene::stepBodies(std::size_t begin, std::size_t end, std::int64_t steps, SceneStepResult& result) {
+  for (std::size_t body = begin; body < end; ++body) {
     if (records_[body].divergence != Divergence::kNone) continue;  // it holds its last good state until reset
     if (collides(body)) continue;                                   // stepped with the contact below
     StepStatus status = StepStatus::kOk;
@@ -120,8 +149,6 @@ SceneStepResult Scene::step(std::int64_t steps) {
     if (status != StepStatus::kOk && result.status == StepStatus::kOk) result.status = status;
     result.diverged = result.diverged || records_[body].divergence != Divergence::kNone;
   }
-  if (contact_) stepColliders(steps, result);
-  return result;
 }
 
 void Scene::stepColliders(std::int64_t steps, SceneStepResult& result) {

@@ -67,6 +67,7 @@ World::World(const std::vector<BodyDefinition>& bodies, IntegratorType integrato
   const double dt_ns = settings.dt * 1e9;
   if (dt_ns < 9e18 && std::abs(dt_ns - std::round(dt_ns)) <= 1e-9 * dt_ns) dt_ns_ = std::llround(dt_ns);
   scene_.setMaxEnergyGrowth(settings.max_energy_growth);
+  scene_.setThreads(settings.threads);
   inputs_.resize(bodies.size());
   for (InputTimeline& timeline : inputs_) timeline.topic_expiry = kForever;
   pending_.reserve(std::min<std::size_t>(settings.max_pending_commands, 1024));

@@ -50,6 +50,7 @@ struct WorldSettings {
   bool owns_clock = false;       ///< lockstep: pause stops time, step(N) moves the clock by N steps
   bool start_paused = false;
   double max_energy_growth = std::numeric_limits<double>::infinity();  ///< the Scene's divergence guard
+  std::size_t threads = 1;  ///< the Scene's threads (Scene::setThreads; 0: as many as the machine has)
   std::size_t max_pending_commands = 100000;   ///< commands waiting for their step; more are refused
   std::size_t max_timed_wrenches = 1000;       ///< per body; more are refused
 };

@@ -38,6 +38,9 @@ constexpr double kMaxMeshBytesLimit = 4e9;
 constexpr double kMinRate = 1e-3;
 // The smallest physics step [s]: a million steps per simulated second.
 constexpr double kMinDt = 1e-6;
+// ~threads: more than this is a typo, not a machine (each is a std::thread).
+constexpr std::size_t kMaxThreads = 256;
+const char* const kThreadsAllowed = "must be an integer in [0, 256] (0: as many as the machine has)";
 // The longest noise/delay [s]: the delay queue holds delay × rate messages.
 constexpr double kMaxNoiseDelay = 3600.0;
 
@@ -50,7 +53,7 @@ const std::set<std::string> kSceneNames = {
     "rate", "dt", "integrator", "world_frame", "gravity", "bodies", "wrench_timeout", "max_substeps",
     "max_body_steps_per_tick", "max_body_steps_per_request", "publish_tf",
     "publish", "abs_tolerance", "rel_tolerance", "max_force", "max_torque", "max_energy_growth", "lockstep",
-    "real_time_factor", "start_paused", "noise", "environment", "contact", "marker_rate",
+    "real_time_factor", "start_paused", "noise", "environment", "contact", "marker_rate", "threads",
     // The live parameters' namespace (dynamic_reconfigure writes its values there); not read at start-up.
     kLiveNamespace};
 const std::set<std::string> kPublishNames = {"tf", "odom", "state", "applied_wrench", "body_services",
@@ -386,6 +389,8 @@ void readLimits(const XmlRpcValue& params, NodeConfig& config) {
   config.max_body_steps_per_request =
       readInteger(params, "max_body_steps_per_request", static_cast<int>(config.max_body_steps_per_request), 1,
                   "must be an integer >= 1 (steps x bodies one step request may ask for)");
+  config.threads = static_cast<std::size_t>(readInteger(params, "threads", 0, 0, kThreadsAllowed));
+  if (config.threads > kMaxThreads) fail("threads", *find(params, "threads"), kThreadsAllowed);
 }
 
 // The outputs and the simulation control.
@@ -502,7 +507,8 @@ std::string NodeConfig::describe() const {
   out << ", world frame " << world_frame << ", gravity [" << gravity_W.transpose() << "] m/s^2, " << bodies.size()
       << (bodies.size() == 1 ? " body" : " bodies") << ", wrench_timeout " << wrench_timeout << " s, max_substeps "
       << max_substeps << ", max_force " << wrench_limits.max_force << " N, max_torque " << wrench_limits.max_torque
-      << " N m, max_energy_growth " << max_energy_growth << ", publish tf " << (publish.tf ? "true" : "false")
+      << " N m, max_energy_growth " << max_energy_growth << ", threads " << (threads == 0 ? "as many as cores" : std::to_string(threads))
+      << ", publish tf " << (publish.tf ? "true" : "false")
       << " odom " << (publish.odom ? "true" : "false") << " state " << (publish.state ? "true" : "false")
       << " applied_wrench " << (publish.applied_wrench ? "true" : "false") << " body_services "
       << (publish.body_services ? "true" : "false") << " per_body_topics "

@@ -184,3 +184,63 @@ TEST_P(SpecialisedStep, GivesTheGeneralStepsTrajectoryToRounding) {
 
 INSTANTIATE_TEST_SUITE_P(AllMethods, SpecialisedStep, ::testing::ValuesIn(allIntegrators()),
                          [](const ::testing::TestParamInfo<IntegratorType>& info) { return integratorName(info.param); });
+
+// Threads and blocks: every body's step is the same arithmetic on any thread and in any block, so the whole
+// scene's trajectory is identical bit for bit for any thread count and block size, a diverging body included.
+class ThreadedStep : public ::testing::TestWithParam<IntegratorType> {};
+
+TEST_P(ThreadedStep, GivesTheOneThreadTrajectoryBitForBit) {
+  ForceModel damped = gravity(9.81);
+  damped.linear_damping = 0.3;
+  damped.angular_damping = 0.02;
+  const MassProperties sphere = MassProperties::sphere(2.0, 0.3);
+  std::vector<BodyDefinition> bodies;
+  for (int i = 0; i < 150; ++i) {
+    const MassProperties& mass = i % 2 ? kBox : sphere;
+    State initial = spinning(mass, Eigen::Vector3d(0.1 * (i % 7), 3.0 - 0.05 * i, 0.2));
+    initial.p_WB.x() += i;
+    bodies.push_back({Model{mass, i % 3 ? damped : gravity(1.0 + 0.01 * i)}, initial, i % 4 != 0});
+  }
+  AppliedWrench huge;  // body 61 overflows under it: it diverges and keeps its last good state
+  huge.world.force = Eigen::Vector3d(1e308, 0.0, 0.0);
+  bodies[61].initial.P_W.x() = 1.79e308;
+  const auto run = [&](std::size_t threads, std::size_t per_block) {
+    Scene scene(bodies, GetParam(), 0.001);
+    scene.setThreads(threads, per_block);
+    std::vector<SceneStepResult> results;
+    for (int call = 0; call < 3; ++call) {
+      for (std::size_t b = 0; b < bodies.size(); ++b) {
+        if (!bodies[b].takes_input) continue;
+        AppliedWrench input;
+        input.world.force = Eigen::Vector3d(0.1 * call, -0.2, 0.05 * b);
+        input.body.torque = Eigen::Vector3d(0.01, 0.002 * call, -0.02);
+        scene.setInput(b, b == 61 ? huge : input);
+      }
+      results.push_back(scene.step(7));
+    }
+    return std::make_pair(std::move(scene), results);
+  };
+  const auto reference = run(1, Scene::kBodiesPerBlock);
+  ASSERT_EQ(reference.first.divergence(61), Divergence::kNonFiniteState);
+  ASSERT_TRUE(reference.second[0].diverged || reference.second[1].diverged || reference.second[2].diverged);
+  for (const auto& [threads, per_block] : std::vector<std::pair<std::size_t, std::size_t>>{{2, 64}, {3, 7}, {4, 1}, {2, 150}}) {
+    const auto other = run(threads, per_block);
+    EXPECT_EQ(other.first.threads(), threads);
+    for (std::size_t call = 0; call < 3; ++call) {
+      EXPECT_EQ(other.second[call].steps, reference.second[call].steps);
+      EXPECT_EQ(other.second[call].status, reference.second[call].status);
+      EXPECT_EQ(other.second[call].diverged, reference.second[call].diverged);
+    }
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      const State& a = other.first.state(b);
+      const State& r = reference.first.state(b);
+      ASSERT_TRUE(a.p_WB == r.p_WB && a.q_WB.coeffs() == r.q_WB.coeffs() && a.P_W == r.P_W && a.L_W == r.L_W)
+          << threads << " threads, blocks of " << per_block << ": body " << b << " differs";
+      EXPECT_EQ(other.first.divergence(b), reference.first.divergence(b));
+      EXPECT_EQ(other.first.integratedSteps(b), reference.first.integratedSteps(b));
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllMethods, ThreadedStep, ::testing::ValuesIn(allIntegrators()),
+                         [](const ::testing::TestParamInfo<IntegratorType>& info) { return integratorName(info.param); });

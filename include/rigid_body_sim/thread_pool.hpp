@@ -1,0 +1,54 @@
+// A small fixed pool of worker threads for the scene's independent bodies: parallelFor hands out blocks of
+// an index range to the workers and to the calling thread, and returns when every block is done.
+//
+// Results do not depend on the thread count: the caller gives every block its own output, so what a block
+// computes is the same whichever thread runs it and however many there are. Threads start on the first
+// parallelFor that has more than one block to share, so a small scene never starts one.
+#pragma once
+
+#include <condition_variable>
+#include <cstddef>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace rigid_body {
+
+class ThreadPool {
+ public:
+  /// `threads` ≥ 1 in all, the calling thread included (1: everything runs on the caller).
+  explicit ThreadPool(std::size_t threads = 1);
+  ~ThreadPool();
+  ThreadPool(const ThreadPool&) = delete;
+  ThreadPool& operator=(const ThreadPool&) = delete;
+
+  std::size_t threads() const { return threads_; }
+
+  /// Calls body(block) once for every block in [0, blocks), spread over the threads; returns when all are
+  /// done. `body` must not throw. Not reentrant: one parallelFor at a time per pool.
+  void parallelFor(std::size_t blocks, const std::function<void(std::size_t block)>& body);
+
+  /// The threads a pool should have for "as many as the machine has" (0) or a request (≥ 1).
+  static std::size_t resolve(std::size_t requested);
+
+ private:
+  void startWorkers();
+  void work();
+  void runBlocks();
+
+  std::size_t threads_;
+  std::vector<std::thread> workers_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::condition_variable done_;
+  // The current job, read by the workers under mutex_ (generation_ changes once per parallelFor).
+  const std::function<void(std::size_t)>* job_ = nullptr;
+  std::size_t blocks_ = 0;
+  std::size_t next_block_ = 0;     // the next block to hand out
+  std::size_t blocks_done_ = 0;
+  std::size_t generation_ = 0;
+  bool stopping_ = false;
+};
+
+}  // namespace rigid_body
