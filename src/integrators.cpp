@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "integrators/batched_runge_kutta.hpp"
 #include "integrators/methods.hpp"
 #include "integrators/runge_kutta.hpp"
 
@@ -61,12 +62,18 @@ IntegratorType integratorFromName(const std::string& name) {
 
 int nominalOrder(IntegratorType type) { return infoOf(type).order; }
 
-namespace {
-// Every method ends a step with |q| = 1 to rounding (≤ 1e-15 measured). Off by more, the step failed even if
-// every number is finite: normalising a q whose components overflowed divides by infinity and gives the
-// zero quaternion, which is no rotation at all.
-constexpr double kUnitQuaternionTolerance = 1e-6;
-}  // namespace
+bool Integrator::acceptable(const State& next) {
+  // Every method ends a step with |q| = 1 to rounding (≤ 1e-15 measured). Off by more, the step failed even
+  // if every number is finite: normalising a q whose components overflowed divides by infinity and gives
+  // the zero quaternion, which is no rotation at all.
+  constexpr double kUnitQuaternionTolerance = 1e-6;
+  return isFinite(next) && std::abs(next.q_WB.norm() - 1.0) <= kUnitQuaternionTolerance;
+}
+
+void Integrator::countSteps(std::uint64_t steps) {
+  statistics_.steps += steps;
+  statistics_.rhs_evaluations += steps * (type_ == IntegratorType::kRk4 ? 4 : 1);
+}
 
 Integrator::Integrator(IntegratorType type, const IntegratorSettings& settings) : type_(type), settings_(settings) {}
 
@@ -77,7 +84,7 @@ StepStatus Integrator::step(const Model& model, const StepTerms& terms, const Ap
   State next = state;
   const StepStatus status = doStep(model, terms, input, h, next);
   if (status != StepStatus::kOk) return status;
-  if (!isFinite(next) || !(std::abs(next.q_WB.norm() - 1.0) <= kUnitQuaternionTolerance)) return StepStatus::kNonFinite;
+  if (!acceptable(next)) return StepStatus::kNonFinite;
   state = next;
   ++statistics_.steps;
   return StepStatus::kOk;
@@ -86,22 +93,18 @@ StepStatus Integrator::step(const Model& model, const StepTerms& terms, const Ap
 StepStatus Integrator::doStep(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h,
                               State& state) {
   switch (type_) {
-    case IntegratorType::kExplicitEuler: {
-      Stages<1> stages;
+    case IntegratorType::kExplicitEuler:
       statistics_.rhs_evaluations += 1;
-      state = normalised(rungeKutta(kEulerTableau, OrientationUpdate::kAdditive, model, terms, input, h, state, stages));
+      state = laneStep(type_, model, terms, input, h, state);
       return StepStatus::kOk;
-    }
     case IntegratorType::kSemiImplicitEuler:
       statistics_.rhs_evaluations += 1;
       state = semiImplicitEulerStep(model, terms, input, h, state);
       return StepStatus::kOk;
-    case IntegratorType::kRk4: {
-      Stages<4> stages;
+    case IntegratorType::kRk4:
       statistics_.rhs_evaluations += 4;
-      state = normalised(rungeKutta(kRk4Tableau, OrientationUpdate::kAdditive, model, terms, input, h, state, stages));
+      state = laneStep(type_, model, terms, input, h, state);
       return StepStatus::kOk;
-    }
     case IntegratorType::kRkmk4: {
       Stages<4> stages;
       statistics_.rhs_evaluations += 4;

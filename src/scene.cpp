@@ -1,11 +1,14 @@
 #include "rigid_body_sim/scene.hpp"
 
 #include <algorithm>
+#include <array>
+#include <type_traits>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "contact/contact_step.hpp"
+#include "integrators/batched_runge_kutta.hpp"
 #include "rigid_body_sim/kinematics.hpp"
 
 namespace rigid_body {
@@ -141,13 +144,105 @@ SceneStepResult Scene::step(std::int64_t steps) {
 }
 
 void Scene::stepBodies(std::size_t begin, std::size_t end, std::int64_t steps, SceneStepResult& result) {
+  if (integrators::hasLaneStep(integrator_type_)) {
+    stepBodiesInLanes(begin, end, steps, result);
+    return;
+  }
   for (std::size_t body = begin; body < end; ++body) {
     if (records_[body].divergence != Divergence::kNone) continue;  // it holds its last good state until reset
     if (collides(body)) continue;                                   // stepped with the contact below
     StepStatus status = StepStatus::kOk;
-    result.steps = std::max(result.steps, stepBody(body, steps, status));
-    if (status != StepStatus::kOk && result.status == StepStatus::kOk) result.status = status;
-    result.diverged = result.diverged || records_[body].divergence != Divergence::kNone;
+    const std::int64_t done = stepBody(body, steps, status);
+    mergeBody(body, done, status, result);
+  }
+}
+
+void Scene::mergeBody(std::size_t body, std::int64_t done, StepStatus status, SceneStepResult& result) const {
+  result.steps = std::max(result.steps, done);
+  if (status != StepStatus::kOk && result.status == StepStatus::kOk) result.status = status;
+  result.diverged = result.diverged || records_[body].divergence != Divergence::kNone;
+}
+
+void Scene::stepBodiesInLanes(std::size_t begin, std::size_t end, std::int64_t steps, SceneStepResult& result) {
+  // Bodies go into batches of kLanes by their terms (a batch takes one branch of the step for all its
+  // lanes); a few batches are open at once, so that bodies of two or three kinds interleaved in the list
+  // still fill them. Which bodies share a batch changes nothing in any body's arithmetic.
+  constexpr std::size_t kOpenBatches = 4;
+  struct Batch {
+    StepTerms terms;
+    std::array<std::size_t, integrators::kLanes> bodies;
+    std::size_t count = 0;
+  };
+  std::array<Batch, kOpenBatches> open;
+  std::size_t used = 0, oldest = 0;
+  const auto run = [&](Batch& batch) {
+    if (batch.count == 1) {
+      stepLanes<double>(batch.bodies.data(), 1, steps, result);
+    } else if (batch.count > 1) {
+      stepLanes<integrators::Lanes>(batch.bodies.data(), batch.count, steps, result);
+    }
+    batch.count = 0;
+  };
+  for (std::size_t body = begin; body < end; ++body) {
+    if (records_[body].divergence != Divergence::kNone || collides(body)) continue;
+    std::size_t k = 0;
+    while (k < used && open[k].terms != terms_[body]) ++k;
+    if (k == used) {
+      if (used < kOpenBatches) {
+        ++used;
+      } else {  // every slot holds another kind: the oldest batch runs as it is and makes room
+        k = oldest;
+        oldest = (oldest + 1) % kOpenBatches;
+        run(open[k]);
+      }
+      open[k].terms = terms_[body];
+    }
+    Batch& batch = open[k];
+    batch.bodies[batch.count++] = body;
+    if (batch.count == integrators::kLanes) run(batch);
+  }
+  for (std::size_t k = 0; k < used; ++k) run(open[k]);
+}
+
+template <class T>
+void Scene::stepLanes(const std::size_t* bodies, std::size_t count, std::int64_t steps, SceneStepResult& result) {
+  using namespace integrators;
+  constexpr std::size_t lanes = std::is_same<T, double>::value ? 1 : kLanes;
+  LaneBody<T> constants;
+  LaneState<T> y;
+  for (std::size_t i = 0; i < lanes; ++i) {  // unused lanes repeat the last body; their results are dropped
+    const std::size_t body = bodies[std::min(i, count - 1)];
+    loadBody(constants, i, models_[body], inputs_[body]);
+    loadState(y, i, states_[body]);
+  }
+  const StepTerms& terms = terms_[bodies[0]];
+  std::array<std::int64_t, kLanes> done;
+  std::array<bool, kLanes> running;
+  std::size_t still_running = count;
+  for (std::size_t i = 0; i < count; ++i) {
+    done[i] = steps;
+    running[i] = true;
+  }
+  std::array<bool, kLanes> ok;
+  for (std::int64_t k = 0; k < steps && still_running > 0; ++k) {
+    const LaneState<T> next = laneStep(integrator_type_, constants, terms, dt_, y);
+    acceptableLanes(next, count, ok.data());
+    for (std::size_t i = 0; i < count; ++i) {
+      if (!running[i] || ok[i]) continue;
+      running[i] = false;  // Integrator::step's refusal: the step is not taken, the body stops here
+      done[i] = k;
+      --still_running;
+    }
+    y = next;  // a stopped lane runs on unread: its body gets its state before the call back below
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::size_t body = bodies[i];
+    const State before = states_[body];
+    storeState(y, i, states_[body]);
+    integrators_[body].countSteps(static_cast<std::uint64_t>(done[i]));
+    const StepStatus status = running[i] ? StepStatus::kOk : StepStatus::kNonFinite;
+    finishBody(body, before, done[i], status);
+    mergeBody(body, done[i], status, result);
   }
 }
 
@@ -188,13 +283,21 @@ std::int64_t Scene::stepBody(std::size_t body, std::int64_t steps, StepStatus& s
   State& state = states_[body];
   const AppliedWrench& input = inputs_[body];
   Integrator& integrator = integrators_[body];
-  BodyRecord& record = records_[body];
   const State before = state;
   std::int64_t done = 0;
   for (; done < steps; ++done) {
     status = integrator.step(model, terms, input, dt_, state);
     if (status != StepStatus::kOk) break;
   }
+  finishBody(body, before, done, status);
+  return done;
+}
+
+void Scene::finishBody(std::size_t body, const State& before, std::int64_t done, StepStatus status) {
+  const Model& model = models_[body];
+  const AppliedWrench& input = inputs_[body];
+  State& state = states_[body];
+  BodyRecord& record = records_[body];
   record.integrated_steps += done;
   if (status == StepStatus::kNonFinite || status == StepStatus::kNotConverged) {
     record.divergence = status == StepStatus::kNonFinite ? Divergence::kNonFiniteState : Divergence::kStepFailure;
@@ -210,7 +313,6 @@ std::int64_t Scene::stepBody(std::size_t body, std::int64_t steps, StepStatus& s
     if (!(growth <= budget * (1.0 + 1e-9))) record.divergence = Divergence::kEnergyGrowth;
   }
   if (record.divergence != Divergence::kNone) state = before;  // the last good state: before the call that diverged
-  return done;
 }
 
 void Scene::reset() {

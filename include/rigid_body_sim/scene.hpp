@@ -147,6 +147,16 @@ class Scene {
 
   // The independent bodies in [begin, end), each `steps` steps, their outcome merged into `result`.
   void stepBodies(std::size_t begin, std::size_t end, std::int64_t steps, SceneStepResult& result);
+  // explicit_euler and rk4: the same, bodies with the same terms four at a time (batched_runge_kutta.hpp).
+  void stepBodiesInLanes(std::size_t begin, std::size_t end, std::int64_t steps, SceneStepResult& result);
+  // `count` ≤ 4 bodies with the same terms, `steps` steps each, one per lane of T (double: one body).
+  template <class T>
+  void stepLanes(const std::size_t* bodies, std::size_t count, std::int64_t steps, SceneStepResult& result);
+  // A body's outcome into a step's result.
+  void mergeBody(std::size_t body, std::int64_t done, StepStatus status, SceneStepResult& result) const;
+  // After a body's `done` steps ending in `status`: its count, its divergence (the step's failure or the
+  // energy guard) and, on divergence, its state back to `before` (the state before the call).
+  void finishBody(std::size_t body, const State& before, std::int64_t done, StepStatus status);
   // One body's `steps` steps and its divergence check; returns the steps done.
   std::int64_t stepBody(std::size_t body, std::int64_t steps, StepStatus& status);
   // The colliding bodies' `steps` steps together with contact.

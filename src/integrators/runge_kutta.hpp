@@ -1,4 +1,5 @@
-// The explicit Runge–Kutta driver and its tableaux, shared by explicit_euler, rk4, rkmk4 and dopri5.
+// The explicit Runge–Kutta driver and its tableaux, shared by rkmk4 and dopri5 (explicit_euler and rk4 have
+// their own arrangement of the same steps, for one body or four at once: batched_runge_kutta.hpp).
 // Internal to the integrators (not installed).
 #pragma once
 
@@ -11,7 +12,7 @@
 namespace rigid_body {
 namespace integrators {
 
-// Explicit Runge–Kutta on the state, shared by rk4, rkmk4 and dopri5.
+// Explicit Runge–Kutta on the state, shared by rkmk4 and dopri5.
 //
 // Stage i: Y_i = Y + h Σ_{j<i} a_ij k_j, k_i = f(Y_i); the step: Y + h Σ b_j k_j.
 // The orientation is either added to like any other component (kAdditive: classic RK on the quaternion's
@@ -90,9 +91,6 @@ inline State rungeKutta(const Tableau<S>& tableau, OrientationUpdate mode, const
   next.t = y.t + h;
   return next;
 }
-
-// Explicit Euler, the one-stage method: Y_{n+1} = Y_n + h f(Y_n), then q ← q/|q| (Baraff & Witkin's starting point).
-inline const Tableau<1> kEulerTableau = {{{{{0}}}}, {{1}}};
 
 // Classic RK4: c = (0, ½, ½, 1), b = (1/6, 1/3, 1/3, 1/6).
 inline const Tableau<4> kRk4Tableau = {{{{{0, 0, 0, 0}}, {{0.5, 0, 0, 0}}, {{0, 0.5, 0, 0}}, {{0, 0, 1, 0}}}},
