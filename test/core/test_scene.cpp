@@ -20,6 +20,16 @@ ForceModel gravity(double g) {
   return forces;
 }
 
+// Gravity with both dampings: every force term of the step.
+ForceModel dampedFall() {
+  ForceModel forces = gravity(9.81);
+  forces.linear_damping = 0.3;
+  forces.angular_damping = 0.02;
+  return forces;
+}
+
+const MassProperties kSphere = MassProperties::sphere(2.0, 0.3);
+
 State spinning(const MassProperties& mass, const Eigen::Vector3d& w_B) {
   return stateFromVelocities(mass, Eigen::Vector3d(1.0, 2.0, 3.0),
                              Eigen::Quaterniond(Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, -2, 0.5).normalized())),
@@ -147,10 +157,8 @@ TEST(Scene, ADivergingBodyStopsAloneWhileTheOthersGoOn) {
 class SpecialisedStep : public ::testing::TestWithParam<IntegratorType> {};
 
 TEST_P(SpecialisedStep, GivesTheGeneralStepsTrajectoryToRounding) {
-  ForceModel damped = gravity(9.81);
-  damped.linear_damping = 0.3;
-  damped.angular_damping = 0.02;
-  const MassProperties sphere = MassProperties::sphere(2.0, 0.3);
+  const ForceModel damped = dampedFall();
+  const MassProperties sphere = kSphere;
   const std::vector<BodyDefinition> cases = {
       {Model{kBox, ForceModel{}}, State{}, false},                                           // at rest in space
       {Model{kBox, gravity(9.81)}, spinning(kBox, Eigen::Vector3d::Zero()), false},          // falling, no spin
@@ -190,10 +198,8 @@ INSTANTIATE_TEST_SUITE_P(AllMethods, SpecialisedStep, ::testing::ValuesIn(allInt
 class ThreadedStep : public ::testing::TestWithParam<IntegratorType> {};
 
 TEST_P(ThreadedStep, GivesTheOneThreadTrajectoryBitForBit) {
-  ForceModel damped = gravity(9.81);
-  damped.linear_damping = 0.3;
-  damped.angular_damping = 0.02;
-  const MassProperties sphere = MassProperties::sphere(2.0, 0.3);
+  const ForceModel damped = dampedFall();
+  const MassProperties sphere = kSphere;
   std::vector<BodyDefinition> bodies;
   for (int i = 0; i < 150; ++i) {
     const MassProperties& mass = i % 2 ? kBox : sphere;
@@ -250,10 +256,8 @@ INSTANTIATE_TEST_SUITE_P(AllMethods, ThreadedStep, ::testing::ValuesIn(allIntegr
 class BatchedStep : public ::testing::TestWithParam<IntegratorType> {};
 
 TEST_P(BatchedStep, GivesEachBodyItsOwnIntegratorStepsBitForBit) {
-  ForceModel damped = gravity(9.81);
-  damped.linear_damping = 0.3;
-  damped.angular_damping = 0.02;
-  const MassProperties sphere = MassProperties::sphere(2.0, 0.3);
+  const ForceModel damped = dampedFall();
+  const MassProperties sphere = kSphere;
   std::vector<BodyDefinition> bodies;
   for (int i = 0; i < 11; ++i) {  // two kinds of terms interleaved, and batches left partly empty
     const MassProperties& mass = i % 3 ? kBox : sphere;
