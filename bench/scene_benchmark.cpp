@@ -85,7 +85,7 @@ void updateWorld(benchmark::State& bench, IntegratorType type) {
 }
 
 int registerAll() {
-  for (IntegratorType type : {IntegratorType::kSemiImplicitEuler, IntegratorType::kRk4}) {
+  for (IntegratorType type : {IntegratorType::kExplicitEuler, IntegratorType::kSemiImplicitEuler, IntegratorType::kRk4}) {
     benchmark::RegisterBenchmark(("scene/" + integratorName(type)).c_str(), stepScene, type, 1)
         ->RangeMultiplier(10)
         ->Range(1, 10000)

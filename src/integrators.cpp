@@ -5,7 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "integrators/batched_runge_kutta.hpp"
+#include "integrators/lane_steps.hpp"
 #include "integrators/methods.hpp"
 #include "integrators/runge_kutta.hpp"
 
@@ -95,15 +95,15 @@ StepStatus Integrator::doStep(const Model& model, const StepTerms& terms, const 
   switch (type_) {
     case IntegratorType::kExplicitEuler:
       statistics_.rhs_evaluations += 1;
-      state = laneStep(type_, model, terms, input, h, state);
+      state = laneStep<IntegratorType::kExplicitEuler>(model, terms, input, h, state);
       return StepStatus::kOk;
     case IntegratorType::kSemiImplicitEuler:
       statistics_.rhs_evaluations += 1;
-      state = semiImplicitEulerStep(model, terms, input, h, state);
+      state = laneStep<IntegratorType::kSemiImplicitEuler>(model, terms, input, h, state);
       return StepStatus::kOk;
     case IntegratorType::kRk4:
       statistics_.rhs_evaluations += 4;
-      state = laneStep(type_, model, terms, input, h, state);
+      state = laneStep<IntegratorType::kRk4>(model, terms, input, h, state);
       return StepStatus::kOk;
     case IntegratorType::kRkmk4: {
       Stages<4> stages;

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "contact/contact_step.hpp"
-#include "integrators/batched_runge_kutta.hpp"
+#include "integrators/lane_steps.hpp"
 #include "rigid_body_sim/kinematics.hpp"
 
 namespace rigid_body {
@@ -170,6 +170,7 @@ void Scene::stepBodiesInLanes(std::size_t begin, std::size_t end, std::int64_t s
   constexpr std::size_t kOpenBatches = 4;
   struct Batch {
     StepTerms terms;
+    bool symmetric_top = false;  // semi-implicit Euler turns these by another branch
     std::array<std::size_t, integrators::kLanes> bodies;
     std::size_t count = 0;
   };
@@ -185,8 +186,9 @@ void Scene::stepBodiesInLanes(std::size_t begin, std::size_t end, std::int64_t s
   };
   for (std::size_t body = begin; body < end; ++body) {
     if (records_[body].divergence != Divergence::kNone || collides(body)) continue;
+    const bool top = integrator_type_ == IntegratorType::kSemiImplicitEuler && integrators::isSymmetricTop(models_[body].mass);
     std::size_t k = 0;
-    while (k < used && open[k].terms != terms_[body]) ++k;
+    while (k < used && (open[k].terms != terms_[body] || open[k].symmetric_top != top)) ++k;
     if (k == used) {
       if (used < kOpenBatches) {
         ++used;
@@ -196,6 +198,7 @@ void Scene::stepBodiesInLanes(std::size_t begin, std::size_t end, std::int64_t s
         run(open[k]);
       }
       open[k].terms = terms_[body];
+      open[k].symmetric_top = top;
     }
     Batch& batch = open[k];
     batch.bodies[batch.count++] = body;
@@ -210,12 +213,12 @@ void Scene::stepLanes(const std::size_t* bodies, std::size_t count, std::int64_t
   constexpr std::size_t lanes = std::is_same<T, double>::value ? 1 : kLanes;
   LaneBody<T> constants;
   LaneState<T> y;
+  const StepTerms& terms = terms_[bodies[0]];
   for (std::size_t i = 0; i < lanes; ++i) {  // unused lanes repeat the last body; their results are dropped
     const std::size_t body = bodies[std::min(i, count - 1)];
-    loadBody(constants, i, models_[body], inputs_[body]);
+    loadBody(constants, i, integrator_type_, terms, models_[body], inputs_[body]);
     loadState(y, i, states_[body]);
   }
-  const StepTerms& terms = terms_[bodies[0]];
   std::array<std::int64_t, kLanes> done;
   std::array<bool, kLanes> running;
   std::size_t still_running = count;

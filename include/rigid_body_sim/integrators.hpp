@@ -97,8 +97,9 @@ class Integrator {
   StepStatus step(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h, State& state);
   /// Whether a step's result may be committed: finite, with a unit quaternion (what step() checks).
   static bool acceptable(const State& next);
-  /// Counts `steps` successful steps taken for this integrator by its Scene, which steps explicit Euler and
-  /// rk4 bodies several at a time with the same arithmetic as step() (rhs evaluations counted per method).
+  /// Counts `steps` successful steps taken for this integrator by its Scene, which steps explicit Euler,
+  /// semi-implicit Euler and rk4 bodies several at a time with the same arithmetic as step() (rhs evaluations
+  /// counted per method).
   void countSteps(std::uint64_t steps);
 
   /// The general step: every term (StepTerms::all()).

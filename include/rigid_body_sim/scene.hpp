@@ -147,7 +147,7 @@ class Scene {
 
   // The independent bodies in [begin, end), each `steps` steps, their outcome merged into `result`.
   void stepBodies(std::size_t begin, std::size_t end, std::int64_t steps, SceneStepResult& result);
-  // explicit_euler and rk4: the same, bodies with the same terms four at a time (batched_runge_kutta.hpp).
+  // explicit_euler, semi_implicit_euler, rk4: the same, bodies with the same terms four at a time (lane_steps.hpp).
   void stepBodiesInLanes(std::size_t begin, std::size_t end, std::int64_t steps, SceneStepResult& result);
   // `count` ≤ 4 bodies with the same terms, `steps` steps each, one per lane of T (double: one body).
   template <class T>

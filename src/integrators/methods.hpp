@@ -1,5 +1,6 @@
 // The one-step maps of the methods that are not a plain Runge–Kutta tableau, one family per source file:
-// lie_euler.cpp (semi-implicit Euler, Buss) and splitting.cpp (symplectic splitting, implicit midpoint).
+// lie_euler.cpp (Buss) and splitting.cpp (symplectic splitting, implicit midpoint); semi-implicit Euler is
+// in lane_steps.hpp with explicit Euler and rk4 (one body or four at once).
 // dopri5 lives in dopri5.cpp, as Integrator's member (it keeps memory between calls).
 // Internal to the integrators (not installed).
 #pragma once
@@ -12,9 +13,9 @@
 namespace rigid_body {
 namespace integrators {
 
-State semiImplicitEulerStep(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h,
-                            const State& y);
 State bussStep(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h, const State& y);
+/// Two of the principal moments equal (to a relative 1e-12): a symmetric top, or a sphere.
+bool isSymmetricTop(const MassProperties& mass);
 /// A symmetric top (two equal principal moments) turns exactly over h at fixed world L: its two flows commute.
 /// Returns false, leaving s alone, for an asymmetric body (splitting.cpp).
 bool symmetricTopFlow(const MassProperties& mass, double h, State& s);

@@ -122,10 +122,16 @@ StepStatus midpointFreeRotation(const MassProperties& mass, double h, const Inte
 }  // namespace
 
 // A symmetric top (two equal moments I_r) turns exactly: its two flows commute. False for an asymmetric body.
-bool symmetricTopFlow(const MassProperties& mass, double h, State& s) {
+bool isSymmetricTop(const MassProperties& mass) {
   const Eigen::Vector3d& I = mass.principalMoments();  // ascending
   const double tolerance = kEqualMoments * I(2);
-  if (I(1) - I(0) > tolerance && I(2) - I(1) > tolerance) return false;
+  return I(1) - I(0) <= tolerance || I(2) - I(1) <= tolerance;
+}
+
+bool symmetricTopFlow(const MassProperties& mass, double h, State& s) {
+  if (!isSymmetricTop(mass)) return false;
+  const Eigen::Vector3d& I = mass.principalMoments();  // ascending
+  const double tolerance = kEqualMoments * I(2);
   // The odd axis s is the one not in the equal pair (either end; for a sphere its term vanishes).
   const int odd = I(1) - I(0) <= tolerance ? 2 : 0;
   const double I_r = I(1);

@@ -259,8 +259,9 @@ TEST_P(BatchedStep, GivesEachBodyItsOwnIntegratorStepsBitForBit) {
   const ForceModel damped = dampedFall();
   const MassProperties sphere = kSphere;
   std::vector<BodyDefinition> bodies;
-  for (int i = 0; i < 11; ++i) {  // two kinds of terms interleaved, and batches left partly empty
-    const MassProperties& mass = i % 3 ? kBox : sphere;
+  const MassProperties cylinder = MassProperties::cylinder(1.5, 0.1, 0.4);  // a symmetric top
+  for (int i = 0; i < 17; ++i) {  // kinds of terms and of bodies interleaved, batches left partly empty
+    const MassProperties& mass = i % 3 == 0 ? sphere : (i % 3 == 1 ? kBox : cylinder);
     bodies.push_back({Model{mass, i % 2 ? damped : ForceModel{}},
                       spinning(mass, Eigen::Vector3d(0.3 * i, 2.0, -0.1 * i)), i % 2 == 1});
   }

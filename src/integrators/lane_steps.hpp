@@ -1,0 +1,437 @@
+// Explicit Euler, RK4 and semi-implicit Euler written once for a "lane" type T: T = double steps one body,
+// T = Lanes (four doubles, a GCC/Clang vector) steps four bodies at once, one in each lane. Both
+// instantiations run the same operations in the same order on each body, and vector arithmetic rounds
+// element by element as scalar arithmetic does, so a body's step is the same bit for bit whether it runs
+// alone or in a batch (tested). Internal to the integrators (not installed).
+//
+// The steps are those of the state-space form of dynamics.hpp: Y = (x, q, P, L), ẋ = P/M,
+// q̇ = ½ [0, ω] ⊗ q, Ṗ = F, L̇ = τ, ω = R I_Bcm_B⁻¹ Rᵀ L. Explicit Euler and RK4 use the classic tableaux of
+// runge_kutta.hpp, the quaternion added to like any other component and normalised after the step; what
+// differs from the generic driver is the arrangement:
+//   - R is formed from the stage's q without dividing by |q|² (R_u = |q|² R, since every entry is quadratic
+//     in q), and 1/|q|² is applied at the end of each product that uses R. The division then runs beside the
+//     products instead of before them: a stage is a chain q → R → Rᵀ L → I⁻¹ → R → q̇, and the division no
+//     longer sits at its head.
+//   - a stage is built straight from the previous stage's rates (Y + a h k), with no copies of whole states.
+// Semi-implicit Euler: see laneSemiImplicitEulerStep.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+
+#include "rigid_body_sim/dynamics.hpp"
+#include "rigid_body_sim/integrators.hpp"
+#include "methods.hpp"
+
+// Lanes pass by value between inline functions of this header only: GCC's note that the calling convention of
+// a 32-byte vector differs with and without AVX concerns no boundary here.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+// The step's pieces are inlined into each other whatever the compiler's size heuristics say: left to them,
+// GCC kept laneWrench and the semi-implicit step as calls (perf), each a stack frame of lane structs.
+#define RIGID_BODY_LANE_INLINE inline __attribute__((always_inline))
+
+namespace rigid_body {
+namespace integrators {
+
+/// Four doubles operated on element by element (GCC vector extension; 2 × SSE2 by default, one AVX register
+/// where the build enables it).
+typedef double Lanes __attribute__((vector_size(32)));
+constexpr std::size_t kLanes = 4;
+
+// v ← √v, lane by lane (the vector extension has no square root of its own).
+inline void laneSqrt(double& v) { v = std::sqrt(v); }
+inline void laneSqrt(Lanes& v) {
+  for (std::size_t i = 0; i < kLanes; ++i) v[i] = std::sqrt(v[i]);
+}
+
+template <class T>
+struct Vec {
+  T x, y, z;
+};
+template <class T>
+inline Vec<T> operator+(const Vec<T>& a, const Vec<T>& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+template <class T>
+inline Vec<T> operator-(const Vec<T>& a, const Vec<T>& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+template <class T>
+inline Vec<T> operator*(const T& s, const Vec<T>& a) { return {s * a.x, s * a.y, s * a.z}; }
+
+/// The mutable state of a lane: x, q (x, y, z, w), P, L and the time.
+template <class T>
+struct LaneState {
+  Vec<T> p, P, L;
+  T qx, qy, qz, qw;
+  T t;
+};
+
+/// Ẏ of a lane.
+template <class T>
+struct LaneRates {
+  Vec<T> p, P, L;
+  T qx, qy, qz, qw;
+};
+
+/// The constants of a lane over a step: mass properties, force models and the input (held over the step).
+template <class T>
+struct LaneBody {
+  T inverse_mass;
+  T j0;                                 // I⁻¹(0, 0): ω = j0 L for an isotropic body (terms.world_inertia off)
+  T jxx, jyy, jzz, jxy, jxz, jyz;       // I_Bcm_B⁻¹, symmetric
+  Vec<T> weight;                        // M g
+  T linear_damping, angular_damping;
+  Vec<T> force_W, torque_W, force_B, torque_B;  // the applied wrench: world and body parts
+  // Semi-implicit Euler's free rotation: h/2-free inverse principal moments, principal axes R_BP (rows).
+  Vec<T> inverse_principal;
+  T p00, p01, p02, p10, p11, p12, p20, p21, p22;
+  // Equal in every lane of a batch: a symmetric top turns by its exact flow (splitting.cpp), one lane at a
+  // time, with these bodies' mass properties.
+  bool symmetric_top = false;
+  const MassProperties* mass[sizeof(T) / sizeof(double)];
+};
+
+// Y + c k, every component (q, L only with the rotation term: without it their rates are zero).
+template <class T>
+RIGID_BODY_LANE_INLINE LaneState<T> advanced(const LaneState<T>& y, const T& c, const LaneRates<T>& k, bool rotation) {
+  LaneState<T> s = y;
+  s.p = y.p + c * k.p;
+  s.P = y.P + c * k.P;
+  if (rotation) {
+    s.L = y.L + c * k.L;
+    s.qx = y.qx + c * k.qx;
+    s.qy = y.qy + c * k.qy;
+    s.qz = y.qz + c * k.qz;
+    s.qw = y.qw + c * k.qw;
+  }
+  return s;
+}
+
+// R_u = |q|² R(q/|q|): R's usual entries with 1 − 2(y² + z²) written as w² + x² − y² − z²; and s = 1/|q|².
+template <class T>
+struct LaneRotation {
+  T r00, r01, r02, r10, r11, r12, r20, r21, r22, s;
+  explicit LaneRotation(const LaneState<T>& y) {
+    const T x = y.qx, yq = y.qy, z = y.qz, w = y.qw;
+    const T xx = x * x, yy = yq * yq, zz = z * z, ww = w * w;
+    const T xy = x * yq, xz = x * z, yz = yq * z, wx = w * x, wy = w * yq, wz = w * z;
+    r00 = ww + xx - yy - zz;
+    r11 = ww - xx + yy - zz;
+    r22 = ww - xx - yy + zz;
+    r01 = 2.0 * (xy - wz);
+    r10 = 2.0 * (xy + wz);
+    r02 = 2.0 * (xz + wy);
+    r20 = 2.0 * (xz - wy);
+    r12 = 2.0 * (yz - wx);
+    r21 = 2.0 * (yz + wx);
+    s = 1.0 / (xx + yy + zz + ww);  // beside the products, not before them
+  }
+  Vec<T> turn(const Vec<T>& a) const {  // R_u a
+    return {r00 * a.x + r01 * a.y + r02 * a.z, r10 * a.x + r11 * a.y + r12 * a.z, r20 * a.x + r21 * a.y + r22 * a.z};
+  }
+  Vec<T> turnBack(const Vec<T>& a) const {  // R_uᵀ a
+    return {r00 * a.x + r10 * a.y + r20 * a.z, r01 * a.x + r11 * a.y + r21 * a.z, r02 * a.x + r12 * a.y + r22 * a.z};
+  }
+};
+
+// The wrench of the assembled terms at y, with ω (world axes) if `need_w` (else ω stays zero and so does
+// the angular damping): force = u_F + M g − c v, torque = u_τ − c_ω ω.
+template <class T>
+RIGID_BODY_LANE_INLINE void laneWrench(const LaneBody<T>& b, const StepTerms& terms, bool need_w, const LaneState<T>& y,
+                       const Vec<T>& v, Vec<T>& force, Vec<T>& torque, Vec<T>& w) {
+  const Vec<T> zero = T{} * v;  // zeros of the lane type
+  force = torque = w = zero;
+  if (terms.input || (need_w && terms.world_inertia)) {
+    const LaneRotation<T> R(y);
+    if (need_w && terms.world_inertia) {
+      // ω = R I⁻¹ Rᵀ L = s² R_u (I⁻¹ (R_uᵀ L))
+      const Vec<T> a = R.turnBack(y.L);
+      const Vec<T> c{b.jxx * a.x + b.jxy * a.y + b.jxz * a.z, b.jxy * a.x + b.jyy * a.y + b.jyz * a.z,
+                     b.jxz * a.x + b.jyz * a.y + b.jzz * a.z};
+      w = (R.s * R.s) * R.turn(c);
+    }
+    if (terms.input) {
+      force = b.force_W + R.s * R.turn(b.force_B);
+      torque = b.torque_W + R.s * R.turn(b.torque_B);
+    }
+  }
+  if (need_w && !terms.world_inertia) w = b.j0 * y.L;
+  if (terms.gravity) force = force + b.weight;
+  if (terms.linear_damping) force = force - b.linear_damping * v;
+  if (need_w && terms.angular_damping) torque = torque - b.angular_damping * w;
+}
+
+/// Ẏ = f(Y, u) with the assembled terms only (uniform over the lanes).
+template <class T>
+RIGID_BODY_LANE_INLINE LaneRates<T> laneRates(const LaneBody<T>& b, const StepTerms& terms, const LaneState<T>& y) {
+  LaneRates<T> k;
+  const Vec<T> v = b.inverse_mass * y.P;
+  k.p = v;
+  Vec<T> w;
+  laneWrench(b, terms, terms.rotation, y, v, k.P, k.L, w);
+  if (terms.rotation) {
+    // q̇ = ½ [0, ω] ⊗ q
+    k.qx = 0.5 * (w.x * y.qw + w.y * y.qz - w.z * y.qy);
+    k.qy = 0.5 * (w.y * y.qw + w.z * y.qx - w.x * y.qz);
+    k.qz = 0.5 * (w.z * y.qw + w.x * y.qy - w.y * y.qx);
+    k.qw = -0.5 * (w.x * y.qx + w.y * y.qy + w.z * y.qz);
+  } else {
+    k.qx = k.qy = k.qz = k.qw = T{};  // q and L keep their values without the rotation term
+  }
+  return k;
+}
+
+// q ← q/|q|
+template <class T>
+RIGID_BODY_LANE_INLINE void normaliseQuaternion(LaneState<T>& y) {
+  T norm = y.qx * y.qx + y.qy * y.qy + y.qz * y.qz + y.qw * y.qw;
+  laneSqrt(norm);
+  const T inverse_norm = 1.0 / norm;
+  y.qx = y.qx * inverse_norm;
+  y.qy = y.qy * inverse_norm;
+  y.qz = y.qz * inverse_norm;
+  y.qw = y.qw * inverse_norm;
+}
+
+/// Explicit Euler: Y + h f(Y), q normalised.
+template <class T>
+RIGID_BODY_LANE_INLINE LaneState<T> laneEulerStep(const LaneBody<T>& b, const StepTerms& terms, double h, const LaneState<T>& y) {
+  LaneState<T> next = advanced(y, T{} + h, laneRates(b, terms, y), terms.rotation);
+  normaliseQuaternion(next);
+  next.t = y.t + h;
+  return next;
+}
+
+/// Classic RK4: k1 = f(Y), k2 = f(Y + h/2 k1), k3 = f(Y + h/2 k2), k4 = f(Y + h k3),
+/// Y + h/6 k1 + h/3 k2 + h/3 k3 + h/6 k4, q normalised.
+template <class T>
+RIGID_BODY_LANE_INLINE LaneState<T> laneRk4Step(const LaneBody<T>& b, const StepTerms& terms, double h, const LaneState<T>& y) {
+  const bool rotation = terms.rotation;
+  const T half = T{} + 0.5 * h, whole = T{} + h, sixth = T{} + h / 6.0;
+  const LaneRates<T> k1 = laneRates(b, terms, y);
+  const LaneRates<T> k2 = laneRates(b, terms, advanced(y, half, k1, rotation));
+  const LaneRates<T> k3 = laneRates(b, terms, advanced(y, half, k2, rotation));
+  const LaneRates<T> k4 = laneRates(b, terms, advanced(y, whole, k3, rotation));
+  // Y + h/6 k1 + h/3 k2 + h/3 k3 + h/6 k4, each rate scaled before the sum: rates near the largest double
+  // (a wrench of 1e308 N) then overflow no sooner than the state they move.
+  const T third = T{} + h / 3.0;
+  LaneState<T> next = advanced(advanced(advanced(advanced(y, sixth, k1, rotation), third, k2, rotation), third, k3, rotation),
+                               sixth, k4, rotation);
+  normaliseQuaternion(next);
+  next.t = y.t + h;
+  return next;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Loading bodies into lanes and back. For T = double there is one lane (lane index 0).
+
+inline void setLane(double& v, std::size_t, double value) { v = value; }
+inline void setLane(Lanes& v, std::size_t i, double value) { v[i] = value; }
+inline double laneValue(const double& v, std::size_t) { return v; }
+inline double laneValue(const Lanes& v, std::size_t i) { return v[i]; }
+
+template <class T>
+inline void setLane(Vec<T>& to, std::size_t i, const Eigen::Vector3d& from) {
+  setLane(to.x, i, from.x());
+  setLane(to.y, i, from.y());
+  setLane(to.z, i, from.z());
+}
+
+// Lane i of b from a body, only what a step of `type` with these terms reads (a lone body's step loads it at
+// every call: a step that needs little loads little).
+template <class T>
+inline void loadBody(LaneBody<T>& b, std::size_t i, IntegratorType type, const StepTerms& terms, const Model& model,
+                     const AppliedWrench& input) {
+  setLane(b.inverse_mass, i, model.mass.inverseMass());
+  const bool rotation = terms.rotation || (type == IntegratorType::kSemiImplicitEuler && terms.angular_damping);
+  if (rotation && terms.world_inertia) {
+    const Eigen::Matrix3d& J = model.mass.inverseInertia();
+    setLane(b.jxx, i, J(0, 0));
+    setLane(b.jyy, i, J(1, 1));
+    setLane(b.jzz, i, J(2, 2));
+    setLane(b.jxy, i, J(0, 1));
+    setLane(b.jxz, i, J(0, 2));
+    setLane(b.jyz, i, J(1, 2));
+  }
+  if (rotation) setLane(b.j0, i, model.mass.inverseInertia()(0, 0));
+  if (terms.gravity) setLane(b.weight, i, model.mass.mass() * model.forces.gravity_W);
+  if (terms.linear_damping) setLane(b.linear_damping, i, model.forces.linear_damping);
+  if (terms.angular_damping) setLane(b.angular_damping, i, model.forces.angular_damping);
+  if (terms.input) {
+    setLane(b.force_W, i, input.world.force);
+    setLane(b.torque_W, i, input.world.torque);
+    setLane(b.force_B, i, input.body.force);
+    setLane(b.torque_B, i, input.body.torque);
+  }
+  if (type != IntegratorType::kSemiImplicitEuler || !terms.rotation || !terms.world_inertia) return;
+  b.mass[i] = &model.mass;
+  b.symmetric_top = isSymmetricTop(model.mass);  // the same for every body of a batch
+  if (b.symmetric_top) return;
+  setLane(b.inverse_principal, i, model.mass.inversePrincipalMoments());
+  const Eigen::Matrix3d& P = model.mass.principalAxes();
+  setLane(b.p00, i, P(0, 0));
+  setLane(b.p01, i, P(0, 1));
+  setLane(b.p02, i, P(0, 2));
+  setLane(b.p10, i, P(1, 0));
+  setLane(b.p11, i, P(1, 1));
+  setLane(b.p12, i, P(1, 2));
+  setLane(b.p20, i, P(2, 0));
+  setLane(b.p21, i, P(2, 1));
+  setLane(b.p22, i, P(2, 2));
+}
+
+template <class T>
+inline void loadState(LaneState<T>& y, std::size_t i, const State& state) {
+  setLane(y.p, i, state.p_WB);
+  setLane(y.P, i, state.P_W);
+  setLane(y.L, i, state.L_W);
+  setLane(y.qx, i, state.q_WB.x());
+  setLane(y.qy, i, state.q_WB.y());
+  setLane(y.qz, i, state.q_WB.z());
+  setLane(y.qw, i, state.q_WB.w());
+  setLane(y.t, i, state.t);
+}
+
+/// Lane i of y into `state`.
+template <class T>
+inline void storeState(const LaneState<T>& y, std::size_t i, State& state) {
+  state.t = laneValue(y.t, i);
+  state.p_WB = Eigen::Vector3d(laneValue(y.p.x, i), laneValue(y.p.y, i), laneValue(y.p.z, i));
+  state.P_W = Eigen::Vector3d(laneValue(y.P.x, i), laneValue(y.P.y, i), laneValue(y.P.z, i));
+  state.L_W = Eigen::Vector3d(laneValue(y.L.x, i), laneValue(y.L.y, i), laneValue(y.L.z, i));
+  state.q_WB.coeffs() << laneValue(y.qx, i), laneValue(y.qy, i), laneValue(y.qz, i), laneValue(y.qw, i);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+
+// Semi-implicit Euler's rotation of a symmetric top (its exact flow) or an isotropic body (exp(h L/I₀)), one
+// lane at a time: they need trigonometry, which the lanes do not have.
+template <class T>
+__attribute__((noinline)) void turnByExactFlow(const LaneBody<T>& b, bool world_inertia, double h, LaneState<T>& next) {
+  for (std::size_t i = 0; i < sizeof(T) / sizeof(double); ++i) {
+    State s;
+    storeState(next, i, s);
+    if (world_inertia) {
+      symmetricTopFlow(*b.mass[i], h, s);
+    } else {
+      s.q_WB = quaternionExp((h * laneValue(b.j0, i)) * s.L_W) * s.q_WB;
+    }
+    loadState(next, i, s);
+  }
+}
+
+/// Semi-implicit (symplectic) Euler: the momenta take the wrench of Y_n, then the configuration moves with
+/// the new momenta: x += h P_{n+1}/M, and the body turns by the free rotation at L_{n+1} over h, to first
+/// order, without trigonometry: about its principal axes a, b, c in turn (smallest moment first), each by the
+/// Cayley rotation (1, t e_i), t = h m_i/(2 I_i), an angle 2 atan(t) = h m_i/I_i + O(h³). Each turn keeps m_i
+/// and R m = L, so world L stays exact and the map is a Poisson map of the free body (a first-order splitting
+/// of H = Σ m_i²/(2 I_i) into flows of functions of one m_i each): the energy error stays bounded. Turning
+/// instead by exp(h ω) with ω = I⁻¹(q_n) L_{n+1} frozen over the step puts all of the error into the energy,
+/// which drifts and moves the flip times (0.46 rad off on the T handle I = (1, 2, 3), ω_B = (0.01, 10, 0.01)
+/// at h = 1e-5 over 20 s, against 4e-5 rad with the turns). A symmetric top turns by its exact flow and an
+/// isotropic body by exp(h L/I₀), which is exact; both one lane at a time (they need trigonometry).
+template <class T>
+RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>& b, const StepTerms& terms, double h,
+                                              const LaneState<T>& y) {
+  // The kick needs ω only for angular damping; the rotation below does not use it at all.
+  const Vec<T> v = b.inverse_mass * y.P;
+  Vec<T> force, torque, w;
+  laneWrench(b, terms, terms.angular_damping, y, v, force, torque, w);
+  const T step = T{} + h;
+  LaneState<T> next = y;
+  next.P = y.P + step * force;
+  next.p = y.p + (h * b.inverse_mass) * next.P;
+  next.t = y.t + h;
+  if (!terms.rotation) return next;
+  next.L = y.L + step * torque;
+  if (!terms.world_inertia || b.symmetric_top) {
+    turnByExactFlow(b, terms.world_inertia, h, next);
+    normaliseQuaternion(next);
+    return next;
+  }
+  // The body momentum in principal axes, m = R_BPᵀ R_WBᵀ L_{n+1}, with R of q_n.
+  const LaneRotation<T> R(y);
+  const Vec<T> m_B = R.s * R.turnBack(next.L);
+  const Vec<T> m{b.p00 * m_B.x + b.p10 * m_B.y + b.p20 * m_B.z, b.p01 * m_B.x + b.p11 * m_B.y + b.p21 * m_B.z,
+                 b.p02 * m_B.x + b.p12 * m_B.y + b.p22 * m_B.z};
+  // Turn a about e₀ by t₀ = a₀ m₀ (a_i = h/(2 I_i)); it turns m by the rational rotation of D₀ = 1 + t₀²,
+  // so t₁ = a₁ N₁/D₀; turn b moves m₂ by the rotation of 1 + t₁², so t₂ = C/E. The three turns' product
+  // (1 + t₀ i)(1 + t₁ j)(1 + t₂ k) = (1 − t₀t₁t₂, t₀ + t₁t₂, t₁ − t₀t₂, t₂ + t₀t₁) (ik = −j, jk = i, k² = −1),
+  // times the common denominator D₀ E, needs no division at all: the normalisation is the one square root
+  // and division of the whole rotation.
+  const Vec<T> a = (T{} + 0.5 * h) * b.inverse_principal;
+  const T t0 = a.x * m.x;
+  const T D0 = 1.0 + t0 * t0, c0 = 1.0 - t0 * t0, s0 = 2.0 * t0;
+  const T N1 = c0 * m.y + s0 * m.z;   // D₀ m₁ after turn a
+  const T N2 = c0 * m.z - s0 * m.y;   // D₀ m₂ after turn a
+  const T A = a.y * N1;               // t₁ = A/D₀
+  const T D0sq = D0 * D0, Asq = A * A;
+  const T E = D0 * (D0sq + Asq);      // t₂ = C/E
+  const T C = a.z * ((D0sq - Asq) * N2 + 2.0 * A * D0sq * m.x);
+  const T rw = D0 * E - t0 * A * C;
+  const Vec<T> r_P{t0 * D0 * E + A * C, A * E - t0 * D0 * C, C * D0 + t0 * A * E};
+  const Vec<T> r{b.p00 * r_P.x + b.p01 * r_P.y + b.p02 * r_P.z, b.p10 * r_P.x + b.p11 * r_P.y + b.p12 * r_P.z,
+                 b.p20 * r_P.x + b.p21 * r_P.y + b.p22 * r_P.z};  // r_B = R_BP r_P
+  // q ← q ⊗ (rw, r): (q_w rw − q_v·r, q_w r + rw q_v + q_v × r)
+  next.qw = y.qw * rw - (y.qx * r.x + y.qy * r.y + y.qz * r.z);
+  next.qx = y.qw * r.x + rw * y.qx + (y.qy * r.z - y.qz * r.y);
+  next.qy = y.qw * r.y + rw * y.qy + (y.qz * r.x - y.qx * r.z);
+  next.qz = y.qw * r.z + rw * y.qz + (y.qx * r.y - y.qy * r.x);
+  normaliseQuaternion(next);
+  return next;
+}
+
+/// Whether each lane of a step's result may be committed, as Integrator::acceptable says of a State: every
+/// component finite (their sum times zero is 0, not NaN) and |q| within 1e-6 of 1 (|q|² compared instead).
+/// Writes one flag per lane into ok[0 … lanes).
+template <class T>
+inline void acceptableLanes(const LaneState<T>& y, std::size_t lanes, bool* ok) {
+  const T zero{};
+  const T probe = zero * (y.p.x + y.p.y + y.p.z + y.P.x + y.P.y + y.P.z + y.L.x + y.L.y + y.L.z + y.t) +
+                  zero * (y.qx + y.qy + y.qz + y.qw);
+  const T norm2 = y.qx * y.qx + y.qy * y.qy + y.qz * y.qz + y.qw * y.qw;
+  constexpr double kLow = (1.0 - 1e-6) * (1.0 - 1e-6), kHigh = (1.0 + 1e-6) * (1.0 + 1e-6);
+  for (std::size_t i = 0; i < lanes; ++i) {
+    const double n2 = laneValue(norm2, i);
+    ok[i] = laneValue(probe, i) == 0.0 && n2 >= kLow && n2 <= kHigh;
+  }
+}
+
+/// Whether a method steps by these kernels.
+inline bool hasLaneStep(IntegratorType type) {
+  return type == IntegratorType::kRk4 || type == IntegratorType::kExplicitEuler ||
+         type == IntegratorType::kSemiImplicitEuler;
+}
+
+/// One step of a method with a lane kernel (hasLaneStep), for the lanes as T holds them.
+template <class T>
+RIGID_BODY_LANE_INLINE LaneState<T> laneStep(IntegratorType type, const LaneBody<T>& b, const StepTerms& terms, double h,
+                             const LaneState<T>& y) {
+  switch (type) {
+    case IntegratorType::kRk4:
+      return laneRk4Step(b, terms, h, y);
+    case IntegratorType::kSemiImplicitEuler:
+      return laneSemiImplicitEulerStep(b, terms, h, y);
+    default:
+      return laneEulerStep(b, terms, h, y);
+  }
+}
+
+/// One body's step by its lane kernel, T = double: what Integrator::step runs for these methods (one
+/// instantiation per method, so that each call site holds its own method's step only).
+template <IntegratorType kType>
+RIGID_BODY_LANE_INLINE State laneStep(const Model& model, const StepTerms& terms, const AppliedWrench& input,
+                                      double h, const State& y) {
+  LaneBody<double> b;
+  loadBody(b, 0, kType, terms, model, input);
+  LaneState<double> lanes;
+  loadState(lanes, 0, y);
+  State next;
+  storeState(laneStep(kType, b, terms, h, lanes), 0, next);
+  return next;
+}
+
+}  // namespace integrators
+}  // namespace rigid_body
+
+#undef RIGID_BODY_LANE_INLINE
+#pragma GCC diagnostic pop
