@@ -74,3 +74,15 @@ start_private_master() {
   trap 'kill $STOP_PIDS 2>/dev/null; wait 2>/dev/null' EXIT
   sleep 3
 }
+
+# The load scripts' scene: a swarm of $1 bodies (scripts/make_scene.py; half take wrenches; tf and odom at
+# 100 Hz, dt 1 ms, integrator $INTEGRATOR or rk4) written to the file $2. Sets SWARM_FIRST to the name of
+# its first body (the names are zero-padded to the width of the last index).
+write_swarm_scene() {
+  /usr/bin/python3 "$PACKAGE_DIR/scripts/make_scene.py" --bodies "$1" --with-input $((($1 + 1) / 2)) \
+    --integrator "${INTEGRATOR:-rk4}" --publish tf,odom >"$2"
+  local last=$(($1 - 1)) width
+  width=${#last}
+  ((width < 2)) && width=2
+  SWARM_FIRST=$(printf "swarm_%0${width}d" 0)
+}

@@ -13,10 +13,7 @@ start_private_master 11413
 scene=$(mktemp --suffix=.yaml)
 echo "machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'); integrator ${INTEGRATOR:-rk4}, dt 1 ms, outputs at 100 Hz"
 for n in "${@:-1 1000}"; do
-  /usr/bin/python3 "$PACKAGE_DIR/scripts/make_scene.py" --bodies "$n" --with-input $(((n + 1) / 2)) \
-    --integrator "${INTEGRATOR:-rk4}" --publish tf,odom >"$scene"
-  last=$((n - 1)); width=${#last}; ((width < 2)) && width=2
-  first=$(printf "swarm_%0${width}d" 0)
+  write_swarm_scene "$n" "$scene"
   rosparam load "$scene" "/lockstep_$n/rigid_body_node"
   rosparam set /use_sim_time true
   for outputs in all clock; do
@@ -25,7 +22,7 @@ for n in "${@:-1 1000}"; do
     STOP_PIDS="$STOP_PIDS $node"
     sleep 3
     echo -n "$n bodies, $([[ $outputs == all ]] && echo "tf + odom read" || echo "nobody reading tf or odom"): "
-    "$WORKSPACE/devel/lib/rigid_body_sim/lockstep_probe" "/lockstep_$n/$first" "$node" "${SECONDS_PER_RUN:-10}" "$outputs"
+    "$WORKSPACE/devel/lib/rigid_body_sim/lockstep_probe" "/lockstep_$n/$SWARM_FIRST" "$node" "${SECONDS_PER_RUN:-10}" "$outputs"
     kill "$node"; wait "$node" 2>/dev/null || true
   done
 done

@@ -13,17 +13,14 @@ scene=$(mktemp --suffix=.yaml)
 echo "machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'); integrator ${INTEGRATOR:-rk4}, dt 1 ms, rate 100 Hz"
 for bodies in "${@:-1 1000}"; do
   for n in $bodies; do
-    /usr/bin/python3 "$PACKAGE_DIR/scripts/make_scene.py" --bodies "$n" --with-input $(((n + 1) / 2)) \
-      --integrator "${INTEGRATOR:-rk4}" --publish tf,odom >"$scene"
-    last=$((n - 1)); width=${#last}; ((width < 2)) && width=2
-    first=$(printf "swarm_%0${width}d" 0)
+    write_swarm_scene "$n" "$scene"
     rosparam load "$scene" "/load_$n/rigid_body_node"
     rosrun rigid_body_sim rigid_body_node __ns:="/load_$n" >/dev/null 2>&1 &
     node=$!
     STOP_PIDS="$STOP_PIDS $node"
     sleep 3
     echo "--- $n bodies"
-    "$WORKSPACE/devel/lib/rigid_body_sim/node_probe" "/load_$n/$first" "/load_$n/reset" "$node" "${SECONDS_PER_RUN:-10}" 30
+    "$WORKSPACE/devel/lib/rigid_body_sim/node_probe" "/load_$n/$SWARM_FIRST" "/load_$n/reset" "$node" "${SECONDS_PER_RUN:-10}" 30
     kill "$node"; wait "$node" 2>/dev/null || true
   done
 done

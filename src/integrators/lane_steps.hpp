@@ -57,6 +57,19 @@ inline Vec<T> operator-(const Vec<T>& a, const Vec<T>& b) { return {a.x - b.x, a
 template <class T>
 inline Vec<T> operator*(const T& s, const Vec<T>& a) { return {s * a.x, s * a.y, s * a.z}; }
 
+template <class T>
+struct Mat {
+  T m[3][3];
+  Vec<T> operator*(const Vec<T>& a) const {  // M a
+    return {m[0][0] * a.x + m[0][1] * a.y + m[0][2] * a.z, m[1][0] * a.x + m[1][1] * a.y + m[1][2] * a.z,
+            m[2][0] * a.x + m[2][1] * a.y + m[2][2] * a.z};
+  }
+  Vec<T> transposeTimes(const Vec<T>& a) const {  // Mᵀ a
+    return {m[0][0] * a.x + m[1][0] * a.y + m[2][0] * a.z, m[0][1] * a.x + m[1][1] * a.y + m[2][1] * a.z,
+            m[0][2] * a.x + m[1][2] * a.y + m[2][2] * a.z};
+  }
+};
+
 /// The mutable state of a lane: x, q (x, y, z, w), P, L and the time.
 template <class T>
 struct LaneState {
@@ -77,13 +90,13 @@ template <class T>
 struct LaneBody {
   T inverse_mass;
   T j0;                                 // I⁻¹(0, 0): ω = j0 L for an isotropic body (terms.world_inertia off)
-  T jxx, jyy, jzz, jxy, jxz, jyz;       // I_Bcm_B⁻¹, symmetric
+  Mat<T> inverse_inertia;               // I_Bcm_B⁻¹
   Vec<T> weight;                        // M g
   T linear_damping, angular_damping;
   Vec<T> force_W, torque_W, force_B, torque_B;  // the applied wrench: world and body parts
-  // Semi-implicit Euler's free rotation: h/2-free inverse principal moments, principal axes R_BP (rows).
+  // Semi-implicit Euler's free rotation: the inverse principal moments and the principal axes R_BP.
   Vec<T> inverse_principal;
-  T p00, p01, p02, p10, p11, p12, p20, p21, p22;
+  Mat<T> principal_axes;
   // Equal in every lane of a batch: a symmetric top turns by its exact flow (splitting.cpp), one lane at a
   // time, with these bodies' mass properties.
   bool symmetric_top = false;
@@ -109,27 +122,22 @@ RIGID_BODY_LANE_INLINE LaneState<T> advanced(const LaneState<T>& y, const T& c, 
 // R_u = |q|² R(q/|q|): R's usual entries with 1 − 2(y² + z²) written as w² + x² − y² − z²; and s = 1/|q|².
 template <class T>
 struct LaneRotation {
-  T r00, r01, r02, r10, r11, r12, r20, r21, r22, s;
+  Mat<T> R;
+  T s;
   explicit LaneRotation(const LaneState<T>& y) {
     const T x = y.qx, yq = y.qy, z = y.qz, w = y.qw;
     const T xx = x * x, yy = yq * yq, zz = z * z, ww = w * w;
     const T xy = x * yq, xz = x * z, yz = yq * z, wx = w * x, wy = w * yq, wz = w * z;
-    r00 = ww + xx - yy - zz;
-    r11 = ww - xx + yy - zz;
-    r22 = ww - xx - yy + zz;
-    r01 = 2.0 * (xy - wz);
-    r10 = 2.0 * (xy + wz);
-    r02 = 2.0 * (xz + wy);
-    r20 = 2.0 * (xz - wy);
-    r12 = 2.0 * (yz - wx);
-    r21 = 2.0 * (yz + wx);
+    R.m[0][0] = ww + xx - yy - zz;
+    R.m[1][1] = ww - xx + yy - zz;
+    R.m[2][2] = ww - xx - yy + zz;
+    R.m[0][1] = 2.0 * (xy - wz);
+    R.m[1][0] = 2.0 * (xy + wz);
+    R.m[0][2] = 2.0 * (xz + wy);
+    R.m[2][0] = 2.0 * (xz - wy);
+    R.m[1][2] = 2.0 * (yz - wx);
+    R.m[2][1] = 2.0 * (yz + wx);
     s = 1.0 / (xx + yy + zz + ww);  // beside the products, not before them
-  }
-  Vec<T> turn(const Vec<T>& a) const {  // R_u a
-    return {r00 * a.x + r01 * a.y + r02 * a.z, r10 * a.x + r11 * a.y + r12 * a.z, r20 * a.x + r21 * a.y + r22 * a.z};
-  }
-  Vec<T> turnBack(const Vec<T>& a) const {  // R_uᵀ a
-    return {r00 * a.x + r10 * a.y + r20 * a.z, r01 * a.x + r11 * a.y + r21 * a.z, r02 * a.x + r12 * a.y + r22 * a.z};
   }
 };
 
@@ -144,14 +152,11 @@ RIGID_BODY_LANE_INLINE void laneWrench(const LaneBody<T>& b, const StepTerms& te
     const LaneRotation<T> R(y);
     if (need_w && terms.world_inertia) {
       // ω = R I⁻¹ Rᵀ L = s² R_u (I⁻¹ (R_uᵀ L))
-      const Vec<T> a = R.turnBack(y.L);
-      const Vec<T> c{b.jxx * a.x + b.jxy * a.y + b.jxz * a.z, b.jxy * a.x + b.jyy * a.y + b.jyz * a.z,
-                     b.jxz * a.x + b.jyz * a.y + b.jzz * a.z};
-      w = (R.s * R.s) * R.turn(c);
+      w = (R.s * R.s) * (R.R * (b.inverse_inertia * R.R.transposeTimes(y.L)));
     }
     if (terms.input) {
-      force = b.force_W + R.s * R.turn(b.force_B);
-      torque = b.torque_W + R.s * R.turn(b.torque_B);
+      force = b.force_W + R.s * (R.R * b.force_B);
+      torque = b.torque_W + R.s * (R.R * b.torque_B);
     }
   }
   if (need_w && !terms.world_inertia) w = b.j0 * y.L;
@@ -236,6 +241,13 @@ inline void setLane(Vec<T>& to, std::size_t i, const Eigen::Vector3d& from) {
   setLane(to.z, i, from.z());
 }
 
+template <class T>
+inline void setLane(Mat<T>& to, std::size_t i, const Eigen::Matrix3d& from) {
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) setLane(to.m[r][c], i, from(r, c));
+  }
+}
+
 // Lane i of b from a body, only what a step of `type` with these terms reads (a lone body's step loads it at
 // every call: a step that needs little loads little).
 template <class T>
@@ -244,13 +256,7 @@ inline void loadBody(LaneBody<T>& b, std::size_t i, IntegratorType type, const S
   setLane(b.inverse_mass, i, model.mass.inverseMass());
   const bool rotation = terms.rotation || (type == IntegratorType::kSemiImplicitEuler && terms.angular_damping);
   if (rotation && terms.world_inertia) {
-    const Eigen::Matrix3d& J = model.mass.inverseInertia();
-    setLane(b.jxx, i, J(0, 0));
-    setLane(b.jyy, i, J(1, 1));
-    setLane(b.jzz, i, J(2, 2));
-    setLane(b.jxy, i, J(0, 1));
-    setLane(b.jxz, i, J(0, 2));
-    setLane(b.jyz, i, J(1, 2));
+    setLane(b.inverse_inertia, i, model.mass.inverseInertia());
   }
   if (rotation) setLane(b.j0, i, model.mass.inverseInertia()(0, 0));
   if (terms.gravity) setLane(b.weight, i, model.mass.mass() * model.forces.gravity_W);
@@ -267,16 +273,7 @@ inline void loadBody(LaneBody<T>& b, std::size_t i, IntegratorType type, const S
   b.symmetric_top = isSymmetricTop(model.mass);  // the same for every body of a batch
   if (b.symmetric_top) return;
   setLane(b.inverse_principal, i, model.mass.inversePrincipalMoments());
-  const Eigen::Matrix3d& P = model.mass.principalAxes();
-  setLane(b.p00, i, P(0, 0));
-  setLane(b.p01, i, P(0, 1));
-  setLane(b.p02, i, P(0, 2));
-  setLane(b.p10, i, P(1, 0));
-  setLane(b.p11, i, P(1, 1));
-  setLane(b.p12, i, P(1, 2));
-  setLane(b.p20, i, P(2, 0));
-  setLane(b.p21, i, P(2, 1));
-  setLane(b.p22, i, P(2, 2));
+  setLane(b.principal_axes, i, model.mass.principalAxes());
 }
 
 template <class T>
@@ -350,9 +347,7 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>&
   }
   // The body momentum in principal axes, m = R_BPᵀ R_WBᵀ L_{n+1}, with R of q_n.
   const LaneRotation<T> R(y);
-  const Vec<T> m_B = R.s * R.turnBack(next.L);
-  const Vec<T> m{b.p00 * m_B.x + b.p10 * m_B.y + b.p20 * m_B.z, b.p01 * m_B.x + b.p11 * m_B.y + b.p21 * m_B.z,
-                 b.p02 * m_B.x + b.p12 * m_B.y + b.p22 * m_B.z};
+  const Vec<T> m = b.principal_axes.transposeTimes(R.s * R.R.transposeTimes(next.L));
   // Turn a about e₀ by t₀ = a₀ m₀ (a_i = h/(2 I_i)); it turns m by the rational rotation of D₀ = 1 + t₀²,
   // so t₁ = a₁ N₁/D₀; turn b moves m₂ by the rotation of 1 + t₁², so t₂ = C/E. The three turns' product
   // (1 + t₀ i)(1 + t₁ j)(1 + t₂ k) = (1 − t₀t₁t₂, t₀ + t₁t₂, t₁ − t₀t₂, t₂ + t₀t₁) (ik = −j, jk = i, k² = −1),
@@ -369,8 +364,7 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>&
   const T C = a.z * ((D0sq - Asq) * N2 + 2.0 * A * D0sq * m.x);
   const T rw = D0 * E - t0 * A * C;
   const Vec<T> r_P{t0 * D0 * E + A * C, A * E - t0 * D0 * C, C * D0 + t0 * A * E};
-  const Vec<T> r{b.p00 * r_P.x + b.p01 * r_P.y + b.p02 * r_P.z, b.p10 * r_P.x + b.p11 * r_P.y + b.p12 * r_P.z,
-                 b.p20 * r_P.x + b.p21 * r_P.y + b.p22 * r_P.z};  // r_B = R_BP r_P
+  const Vec<T> r = b.principal_axes * r_P;  // r_B = R_BP r_P
   // q ← q ⊗ (rw, r): (q_w rw − q_v·r, q_w r + rw q_v + q_v × r)
   next.qw = y.qw * rw - (y.qx * r.x + y.qy * r.y + y.qz * r.z);
   next.qx = y.qw * r.x + rw * y.qx + (y.qy * r.z - y.qz * r.y);
