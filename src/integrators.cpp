@@ -63,10 +63,6 @@ IntegratorType integratorFromName(const std::string& name) {
 int nominalOrder(IntegratorType type) { return infoOf(type).order; }
 
 bool Integrator::acceptable(const State& next) {
-  // Every method ends a step with |q| = 1 to rounding (≤ 1e-15 measured). Off by more, the step failed even
-  // if every number is finite: normalising a q whose components overflowed divides by infinity and gives
-  // the zero quaternion, which is no rotation at all.
-  constexpr double kUnitQuaternionTolerance = 1e-6;
   return isFinite(next) && std::abs(next.q_WB.norm() - 1.0) <= kUnitQuaternionTolerance;
 }
 

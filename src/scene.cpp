@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <type_traits>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -131,11 +130,7 @@ SceneStepResult Scene::step(std::int64_t steps) {
     pool_->parallelFor(blocks, [&](std::size_t block) {
       stepBodies(block * per_block, std::min(bodies, (block + 1) * per_block), steps, block_results_[block]);
     });
-    for (const SceneStepResult& block : block_results_) {
-      result.steps = std::max(result.steps, block.steps);
-      if (result.status == StepStatus::kOk) result.status = block.status;
-      result.diverged = result.diverged || block.diverged;
-    }
+    for (const SceneStepResult& block : block_results_) merge(block, result);
   } else {
     stepBodies(0, bodies, steps, result);
   }
@@ -157,10 +152,14 @@ void Scene::stepBodies(std::size_t begin, std::size_t end, std::int64_t steps, S
   }
 }
 
+void Scene::merge(const SceneStepResult& part, SceneStepResult& result) {
+  result.steps = std::max(result.steps, part.steps);
+  if (result.status == StepStatus::kOk) result.status = part.status;  // the first failure stays
+  result.diverged = result.diverged || part.diverged;
+}
+
 void Scene::mergeBody(std::size_t body, std::int64_t done, StepStatus status, SceneStepResult& result) const {
-  result.steps = std::max(result.steps, done);
-  if (status != StepStatus::kOk && result.status == StepStatus::kOk) result.status = status;
-  result.diverged = result.diverged || records_[body].divergence != Divergence::kNone;
+  merge({done, status, records_[body].divergence != Divergence::kNone}, result);
 }
 
 void Scene::stepBodiesInLanes(std::size_t begin, std::size_t end, std::int64_t steps, SceneStepResult& result) {
@@ -210,7 +209,7 @@ void Scene::stepBodiesInLanes(std::size_t begin, std::size_t end, std::int64_t s
 template <class T>
 void Scene::stepLanes(const std::size_t* bodies, std::size_t count, std::int64_t steps, SceneStepResult& result) {
   using namespace integrators;
-  constexpr std::size_t lanes = std::is_same<T, double>::value ? 1 : kLanes;
+  constexpr std::size_t lanes = kLaneCount<T>;
   LaneBody<T> constants;
   LaneState<T> y;
   const StepTerms& terms = terms_[bodies[0]];

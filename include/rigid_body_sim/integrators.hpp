@@ -97,6 +97,10 @@ class Integrator {
   StepStatus step(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h, State& state);
   /// Whether a step's result may be committed: finite, with a unit quaternion (what step() checks).
   static bool acceptable(const State& next);
+  /// How far |q| of a step's result may be from 1. Every method ends a step with |q| = 1 to rounding (≤ 1e-15
+  /// measured); off by more, the step failed even if every number is finite: normalising a q whose
+  /// components overflowed divides by infinity and gives the zero quaternion, which is no rotation at all.
+  static constexpr double kUnitQuaternionTolerance = 1e-6;
   /// Counts `steps` successful steps taken for this integrator by its Scene, which steps explicit Euler,
   /// semi-implicit Euler and rk4 bodies several at a time with the same arithmetic as step() (rhs evaluations
   /// counted per method).

@@ -152,6 +152,8 @@ class Scene {
   // `count` ≤ 4 bodies with the same terms, `steps` steps each, one per lane of T (double: one body).
   template <class T>
   void stepLanes(const std::size_t* bodies, std::size_t count, std::int64_t steps, SceneStepResult& result);
+  // A part's outcome (a block's, a body's) into a step's result: the most steps, the first failure, any divergence.
+  static void merge(const SceneStepResult& part, SceneStepResult& result);
   // A body's outcome into a step's result.
   void mergeBody(std::size_t body, std::int64_t done, StepStatus status, SceneStepResult& result) const;
   // After a body's `done` steps ending in `status`: its count, its divergence (the step's failure or the

@@ -158,6 +158,8 @@ class World {
   /// Arrival of the latest topic wrench on any body, or -1 when none came [ns].
   Nanoseconds lastWrenchArrival() const { return last_wrench_arrival_; }
   std::size_t pendingCommands() const { return pending_.size(); }
+  /// The most steps one update() integrates (the catch-up caps over the running bodies); more due are dropped.
+  std::int64_t updateBudget() const;
 
  private:
   struct TimedWrench {
@@ -206,7 +208,6 @@ class World {
   void clearWrenchesNow();
   void resetNow();
   void anchor(Nanoseconds time);
-  std::int64_t updateBudget() const;
 
   WorldSettings settings_;
   Scene scene_;

@@ -39,6 +39,9 @@ namespace integrators {
 /// where the build enables it).
 typedef double Lanes __attribute__((vector_size(32)));
 constexpr std::size_t kLanes = 4;
+/// The bodies a lane type holds: 1 for double, kLanes for Lanes.
+template <class T>
+constexpr std::size_t kLaneCount = sizeof(T) / sizeof(double);
 
 // v ← √v, lane by lane (the vector extension has no square root of its own).
 inline void laneSqrt(double& v) { v = std::sqrt(v); }
@@ -100,7 +103,7 @@ struct LaneBody {
   // Equal in every lane of a batch: a symmetric top turns by its exact flow (splitting.cpp), one lane at a
   // time, with these bodies' mass properties.
   bool symmetric_top = false;
-  const MassProperties* mass[sizeof(T) / sizeof(double)];
+  const MassProperties* mass[kLaneCount<T>];
 };
 
 // Y + c k, every component (q, L only with the rotation term: without it their rates are zero).
@@ -124,6 +127,7 @@ template <class T>
 struct LaneRotation {
   Mat<T> R;
   T s;
+  LaneRotation() = default;  // zeros (as LaneRotation<T>{}): for a caller that forms it only on one branch
   explicit LaneRotation(const LaneState<T>& y) {
     const T x = y.qx, yq = y.qy, z = y.qz, w = y.qw;
     const T xx = x * x, yy = yq * yq, zz = z * z, ww = w * w;
@@ -142,14 +146,16 @@ struct LaneRotation {
 };
 
 // The wrench of the assembled terms at y, with ω (world axes) if `need_w` (else ω stays zero and so does
-// the angular damping): force = u_F + M g − c v, torque = u_τ − c_ω ω.
+// the angular damping): force = u_F + M g − c v, torque = u_τ − c_ω ω. `rotation` is y's, if the caller has
+// formed it already; otherwise it is formed here when a term needs it.
 template <class T>
 RIGID_BODY_LANE_INLINE void laneWrench(const LaneBody<T>& b, const StepTerms& terms, bool need_w, const LaneState<T>& y,
-                       const Vec<T>& v, Vec<T>& force, Vec<T>& torque, Vec<T>& w) {
+                                       const Vec<T>& v, const LaneRotation<T>* rotation, Vec<T>& force,
+                                       Vec<T>& torque, Vec<T>& w) {
   const Vec<T> zero = T{} * v;  // zeros of the lane type
   force = torque = w = zero;
   if (terms.input || (need_w && terms.world_inertia)) {
-    const LaneRotation<T> R(y);
+    const LaneRotation<T> R = rotation != nullptr ? *rotation : LaneRotation<T>(y);
     if (need_w && terms.world_inertia) {
       // ω = R I⁻¹ Rᵀ L = s² R_u (I⁻¹ (R_uᵀ L))
       w = (R.s * R.s) * (R.R * (b.inverse_inertia * R.R.transposeTimes(y.L)));
@@ -172,7 +178,7 @@ RIGID_BODY_LANE_INLINE LaneRates<T> laneRates(const LaneBody<T>& b, const StepTe
   const Vec<T> v = b.inverse_mass * y.P;
   k.p = v;
   Vec<T> w;
-  laneWrench(b, terms, terms.rotation, y, v, k.P, k.L, w);
+  laneWrench(b, terms, terms.rotation, y, v, static_cast<const LaneRotation<T>*>(nullptr), k.P, k.L, w);
   if (terms.rotation) {
     // q̇ = ½ [0, ω] ⊗ q
     k.qx = 0.5 * (w.x * y.qw + w.y * y.qz - w.z * y.qy);
@@ -304,7 +310,7 @@ inline void storeState(const LaneState<T>& y, std::size_t i, State& state) {
 // lane at a time: they need trigonometry, which the lanes do not have.
 template <class T>
 __attribute__((noinline)) void turnByExactFlow(const LaneBody<T>& b, bool world_inertia, double h, LaneState<T>& next) {
-  for (std::size_t i = 0; i < sizeof(T) / sizeof(double); ++i) {
+  for (std::size_t i = 0; i < kLaneCount<T>; ++i) {
     State s;
     storeState(next, i, s);
     if (world_inertia) {
@@ -329,10 +335,13 @@ __attribute__((noinline)) void turnByExactFlow(const LaneBody<T>& b, bool world_
 template <class T>
 RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>& b, const StepTerms& terms, double h,
                                               const LaneState<T>& y) {
-  // The kick needs ω only for angular damping; the rotation below does not use it at all.
+  // The kick needs ω only for angular damping; the rotation below does not use it at all. R of q_n, which the
+  // Cayley turns need, is formed once for both.
+  const bool cayley = terms.rotation && terms.world_inertia && !b.symmetric_top;
+  const LaneRotation<T> R = cayley ? LaneRotation<T>(y) : LaneRotation<T>{};
   const Vec<T> v = b.inverse_mass * y.P;
   Vec<T> force, torque, w;
-  laneWrench(b, terms, terms.angular_damping, y, v, force, torque, w);
+  laneWrench(b, terms, terms.angular_damping, y, v, cayley ? &R : nullptr, force, torque, w);
   const T step = T{} + h;
   LaneState<T> next = y;
   next.P = y.P + step * force;
@@ -346,7 +355,6 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>&
     return next;
   }
   // The body momentum in principal axes, m = R_BPᵀ R_WBᵀ L_{n+1}, with R of q_n.
-  const LaneRotation<T> R(y);
   const Vec<T> m = b.principal_axes.transposeTimes(R.s * R.R.transposeTimes(next.L));
   // Turn a about e₀ by t₀ = a₀ m₀ (a_i = h/(2 I_i)); it turns m by the rational rotation of D₀ = 1 + t₀²,
   // so t₁ = a₁ N₁/D₀; turn b moves m₂ by the rotation of 1 + t₁², so t₂ = C/E. The three turns' product
@@ -375,7 +383,7 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>&
 }
 
 /// Whether each lane of a step's result may be committed, as Integrator::acceptable says of a State: every
-/// component finite (their sum times zero is 0, not NaN) and |q| within 1e-6 of 1 (|q|² compared instead).
+/// component finite (their sum times zero is 0, not NaN) and |q| within the tolerance of 1 (|q|² compared).
 /// Writes one flag per lane into ok[0 … lanes).
 template <class T>
 inline void acceptableLanes(const LaneState<T>& y, std::size_t lanes, bool* ok) {
@@ -383,7 +391,8 @@ inline void acceptableLanes(const LaneState<T>& y, std::size_t lanes, bool* ok) 
   const T probe = zero * (y.p.x + y.p.y + y.p.z + y.P.x + y.P.y + y.P.z + y.L.x + y.L.y + y.L.z + y.t) +
                   zero * (y.qx + y.qy + y.qz + y.qw);
   const T norm2 = y.qx * y.qx + y.qy * y.qy + y.qz * y.qz + y.qw * y.qw;
-  constexpr double kLow = (1.0 - 1e-6) * (1.0 - 1e-6), kHigh = (1.0 + 1e-6) * (1.0 + 1e-6);
+  constexpr double kTolerance = Integrator::kUnitQuaternionTolerance;
+  constexpr double kLow = (1.0 - kTolerance) * (1.0 - kTolerance), kHigh = (1.0 + kTolerance) * (1.0 + kTolerance);
   for (std::size_t i = 0; i < lanes; ++i) {
     const double n2 = laneValue(norm2, i);
     ok[i] = laneValue(probe, i) == 0.0 && n2 >= kLow && n2 <= kHigh;

@@ -159,9 +159,6 @@ void SimulatorNode::report(const rigid_body::UpdateResult& result) {
 void SimulatorNode::runLockstep() {
   const std::int64_t steps_per_publish =
       std::max<std::int64_t>(1, std::llround(std::min(1e12, 1.0 / (config_.rate * config_.dt))));
-  // Steps one look at the callbacks may run: the per-tick body-step cap over the bodies.
-  const std::int64_t body_steps_cap = std::max<std::int64_t>(
-      1, config_.max_body_steps_per_tick / static_cast<std::int64_t>(std::max<std::size_t>(1, config_.bodies.size())));
   outputs_.publishClock(world_);
   ros::WallTime pace_start = ros::WallTime::now();
   std::int64_t pace_steps = world_.clockSteps();
@@ -178,7 +175,7 @@ void SimulatorNode::runLockstep() {
       // output: wrenches and services act at the output grid), within the catch-up caps so nothing is dropped.
       const std::int64_t steps = world_.clockSteps();
       const std::int64_t to_output = steps_per_publish - steps % steps_per_publish;
-      const std::int64_t chunk = std::max<std::int64_t>(1, std::min({to_output, config_.max_substeps, body_steps_cap}));
+      const std::int64_t chunk = std::min(to_output, world_.updateBudget());
       advance(world_.timeOfStep(steps + chunk));
       if (world_.clockSteps() % steps_per_publish == 0) {
         outputs_.publishClock(world_);
