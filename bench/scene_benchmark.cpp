@@ -5,7 +5,8 @@
 //
 // The scene is the swarm's: bodies cycling through box, sphere and cylinder with spin, zero g, half of them
 // pushed by a constant wrench. One iteration is one tick of the node's default timing: 10 steps of 1 ms.
-// The threaded cases step the same scene on every core (Scene::setThreads(0)), timed by the wall clock.
+// The threaded cases step the same scene on every core (Scene::setThreads(0)), timed by the wall clock. Batches
+// run on AVX where the CPU has it (Scene::wideLanes); the portable cases turn that off.
 #include <benchmark/benchmark.h>
 
 #include <vector>
@@ -48,10 +49,13 @@ Scene swarm(std::size_t bodies, IntegratorType type) {
   return simulation;
 }
 
-void stepScene(benchmark::State& bench, IntegratorType type, std::size_t threads) {
+enum class Vectors { kWide, kPortable };
+
+void stepScene(benchmark::State& bench, IntegratorType type, std::size_t threads, Vectors vectors) {
   const auto bodies = static_cast<std::size_t>(bench.range(0));
   Scene simulation = swarm(bodies, type);
   simulation.setThreads(threads);
+  simulation.setWideLanes(vectors == Vectors::kWide);
   for (auto _ : bench) {
     simulation.step(kStepsPerTick);
     benchmark::DoNotOptimize(simulation.state(bodies - 1));
@@ -86,13 +90,24 @@ void updateWorld(benchmark::State& bench, IntegratorType type) {
 
 int registerAll() {
   for (IntegratorType type : {IntegratorType::kExplicitEuler, IntegratorType::kSemiImplicitEuler, IntegratorType::kRk4}) {
-    benchmark::RegisterBenchmark(("scene/" + integratorName(type)).c_str(), stepScene, type, 1)
+    benchmark::RegisterBenchmark(("scene/" + integratorName(type)).c_str(), stepScene, type, 1, Vectors::kWide)
         ->RangeMultiplier(10)
         ->Range(1, 10000)
         ->Unit(benchmark::kMicrosecond);
-    benchmark::RegisterBenchmark(("threaded/" + integratorName(type)).c_str(), stepScene, type, 0)
+    benchmark::RegisterBenchmark(("threaded/" + integratorName(type)).c_str(), stepScene, type, 0, Vectors::kWide)
         ->RangeMultiplier(10)
         ->Range(100, 10000)
+        ->UseRealTime()
+        ->Unit(benchmark::kMicrosecond);
+    // The same without AVX (the build's baseline vectors), one core and all cores.
+    benchmark::RegisterBenchmark(("portable/" + integratorName(type)).c_str(), stepScene, type, 1, Vectors::kPortable)
+        ->Arg(1000)
+        ->Arg(10000)
+        ->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark(("portable_threaded/" + integratorName(type)).c_str(), stepScene, type, 0,
+                                 Vectors::kPortable)
+        ->Arg(1000)
+        ->Arg(10000)
         ->UseRealTime()
         ->Unit(benchmark::kMicrosecond);
     benchmark::RegisterBenchmark(("world/" + integratorName(type)).c_str(), updateWorld, type)

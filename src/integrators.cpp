@@ -63,7 +63,12 @@ IntegratorType integratorFromName(const std::string& name) {
 int nominalOrder(IntegratorType type) { return infoOf(type).order; }
 
 bool Integrator::acceptable(const State& next) {
-  return isFinite(next) && std::abs(next.q_WB.norm() - 1.0) <= kUnitQuaternionTolerance;
+  // The batched steps' rule, for one lane: the same test whether a body steps alone or in a batch.
+  integrators::LaneState<double> y;
+  integrators::loadState(y, 0, next);
+  bool ok = false;
+  integrators::acceptableLanes(y, 1, &ok);
+  return ok;
 }
 
 void Integrator::countSteps(std::uint64_t steps) {

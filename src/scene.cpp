@@ -28,7 +28,11 @@ const char* divergenceName(Divergence divergence) {
 
 Scene::Scene(const std::vector<BodyDefinition>& bodies, IntegratorType integrator, double dt,
              const IntegratorSettings& settings, StepAssembly assembly, const ContactSetup& contact)
-    : integrator_type_(integrator), settings_(settings), assembly_(assembly), dt_(dt) {
+    : integrator_type_(integrator),
+      settings_(settings),
+      assembly_(assembly),
+      dt_(dt),
+      wide_lanes_(integrators::wideLanesAvailable()) {
   if (!std::isfinite(dt) || dt <= 0.0) throw std::invalid_argument("dt must be a finite number > 0 [s]");
   if (bodies.empty()) throw std::invalid_argument("a scene needs at least one body");
   for (const BodyDefinition& body : bodies) {
@@ -65,6 +69,11 @@ void Scene::setThreads(std::size_t threads, std::size_t bodies_per_block) {
   bodies_per_block_ = std::max<std::size_t>(1, bodies_per_block);
   const std::size_t resolved = ThreadPool::resolve(threads);
   if (resolved != pool_->threads()) pool_ = std::make_unique<ThreadPool>(resolved);
+}
+
+bool Scene::setWideLanes(bool on) {
+  wide_lanes_ = on && integrators::wideLanesAvailable();
+  return wide_lanes_;
 }
 
 Scene::~Scene() = default;
@@ -220,22 +229,10 @@ void Scene::stepLanes(const std::size_t* bodies, std::size_t count, std::int64_t
   }
   std::array<std::int64_t, kLanes> done;
   std::array<bool, kLanes> running;
-  std::size_t still_running = count;
-  for (std::size_t i = 0; i < count; ++i) {
-    done[i] = steps;
-    running[i] = true;
-  }
-  std::array<bool, kLanes> ok;
-  for (std::int64_t k = 0; k < steps && still_running > 0; ++k) {
-    const LaneState<T> next = laneStep(integrator_type_, constants, terms, dt_, y);
-    acceptableLanes(next, count, ok.data());
-    for (std::size_t i = 0; i < count; ++i) {
-      if (!running[i] || ok[i]) continue;
-      running[i] = false;  // Integrator::step's refusal: the step is not taken, the body stops here
-      done[i] = k;
-      --still_running;
-    }
-    y = next;  // a stopped lane runs on unread: its body gets its state before the call back below
+  if constexpr (kLaneCount<T> == 1) {
+    runLanes(integrator_type_, constants, terms, dt_, steps, count, y, done.data(), running.data());
+  } else {
+    runBatch(wide_lanes_, integrator_type_, constants, terms, dt_, steps, count, y, done.data(), running.data());
   }
   for (std::size_t i = 0; i < count; ++i) {
     const std::size_t body = bodies[i];

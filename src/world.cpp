@@ -15,8 +15,6 @@ constexpr double kGridTolerance = 1e-9;
 constexpr std::int64_t kMaxSteps = std::int64_t(1) << 62;
 constexpr Nanoseconds kMaxNanoseconds = std::numeric_limits<Nanoseconds>::max();
 constexpr Nanoseconds kMinNanoseconds = std::numeric_limits<Nanoseconds>::min();
-// A state handed in from outside must have a unit quaternion to this (the node normalises within 1e-6).
-constexpr double kUnitQuaternionTolerance = 1e-6;
 
 std::int64_t saturatingAdd(std::int64_t a, std::int64_t b) {
   std::int64_t sum;
@@ -397,7 +395,7 @@ CommandReply World::clearWrenches(Nanoseconds arrival) { return submit(command(C
 CommandReply World::reset(Nanoseconds arrival) { return submit(command(CommandKind::kReset, 0, arrival)); }
 
 CommandReply World::setState(std::size_t body, const State& state, Nanoseconds arrival) {
-  if (!rigid_body::isFinite(state) || !(std::abs(state.q_WB.norm() - 1.0) <= kUnitQuaternionTolerance)) {
+  if (!Integrator::acceptable(state)) {  // what a step may commit, a state from outside must be too
     return {false, "refused: the state is not finite or its orientation not a unit quaternion"};
   }
   Command replace = command(CommandKind::kSetState, body, arrival);

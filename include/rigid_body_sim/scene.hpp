@@ -121,6 +121,12 @@ class Scene {
   /// A body's state at construction (and after every reset), for drift diagnostics.
   const State& initialState(std::size_t body = 0) const { return records_[body].initial; }
 
+  /// Whether four-body batches run as 256-bit (AVX) operations; on by default where the CPU has AVX. Off, they
+  /// run on the build's baseline vectors (SSE2). The results are the same bits either way; returns the setting
+  /// taken (on only where available).
+  bool setWideLanes(bool on);
+  bool wideLanes() const { return wide_lanes_; }
+
   /// Contact: whether the scene has a contact step, whether a body collides, and what the last step found.
   bool hasContact() const { return contact_ != nullptr; }
   bool collides(std::size_t body) const { return contact_ != nullptr && collider_of_[body] != kNoCollider; }
@@ -184,6 +190,7 @@ class Scene {
   std::unique_ptr<ThreadPool> pool_;                // steps the independent bodies in blocks
   std::vector<SceneStepResult> block_results_;      // one per block of the last threaded step, reused
   std::size_t bodies_per_block_ = kBodiesPerBlock;
+  bool wide_lanes_;
 };
 
 }  // namespace rigid_body

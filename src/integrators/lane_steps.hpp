@@ -18,6 +18,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 
 #include "rigid_body_sim/dynamics.hpp"
 #include "rigid_body_sim/integrators.hpp"
@@ -43,9 +44,10 @@ constexpr std::size_t kLanes = 4;
 template <class T>
 constexpr std::size_t kLaneCount = sizeof(T) / sizeof(double);
 
-// v ← √v, lane by lane (the vector extension has no square root of its own).
-inline void laneSqrt(double& v) { v = std::sqrt(v); }
-inline void laneSqrt(Lanes& v) {
+// v ← √v, lane by lane (the vector extension has no square root of its own). Inlined into each caller, so that
+// it compiles with the caller's file's options (wide_lanes.cpp: one vector square root).
+RIGID_BODY_LANE_INLINE void laneSqrt(double& v) { v = std::sqrt(v); }
+RIGID_BODY_LANE_INLINE void laneSqrt(Lanes& v) {
   for (std::size_t i = 0; i < kLanes; ++i) v[i] = std::sqrt(v[i]);
 }
 
@@ -207,7 +209,7 @@ RIGID_BODY_LANE_INLINE void normaliseQuaternion(LaneState<T>& y) {
 template <class T>
 RIGID_BODY_LANE_INLINE LaneState<T> laneEulerStep(const LaneBody<T>& b, const StepTerms& terms, double h, const LaneState<T>& y) {
   LaneState<T> next = advanced(y, T{} + h, laneRates(b, terms, y), terms.rotation);
-  normaliseQuaternion(next);
+  if (terms.rotation) normaliseQuaternion(next);  // without it q is y's, untouched
   next.t = y.t + h;
   return next;
 }
@@ -227,7 +229,7 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneRk4Step(const LaneBody<T>& b, const Step
   const T third = T{} + h / 3.0;
   LaneState<T> next = advanced(advanced(advanced(advanced(y, sixth, k1, rotation), third, k2, rotation), third, k3, rotation),
                                sixth, k4, rotation);
-  normaliseQuaternion(next);
+  if (rotation) normaliseQuaternion(next);  // without it q is y's, untouched
   next.t = y.t + h;
   return next;
 }
@@ -382,14 +384,16 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>&
   return next;
 }
 
-/// Whether each lane of a step's result may be committed, as Integrator::acceptable says of a State: every
-/// component finite (their sum times zero is 0, not NaN) and |q| within the tolerance of 1 (|q|² compared).
-/// Writes one flag per lane into ok[0 … lanes).
+/// Whether each lane of a step's result may be committed (Integrator::acceptable is this rule for one lane):
+/// every component finite (0·c is 0 for a finite c and NaN for ±∞ or NaN, and the sum of those products is
+/// 0 only if every one is; the components themselves are not summed, which could overflow) and |q| within
+/// the tolerance of 1 (|q|² compared). Writes one flag per lane into ok[0 … lanes).
 template <class T>
 inline void acceptableLanes(const LaneState<T>& y, std::size_t lanes, bool* ok) {
   const T zero{};
-  const T probe = zero * (y.p.x + y.p.y + y.p.z + y.P.x + y.P.y + y.P.z + y.L.x + y.L.y + y.L.z + y.t) +
-                  zero * (y.qx + y.qy + y.qz + y.qw);
+  const T probe = (zero * y.p.x + zero * y.p.y + zero * y.p.z) + (zero * y.P.x + zero * y.P.y + zero * y.P.z) +
+                  (zero * y.L.x + zero * y.L.y + zero * y.L.z) + (zero * y.qx + zero * y.qy + zero * y.qz) +
+                  (zero * y.qw + zero * y.t);
   const T norm2 = y.qx * y.qx + y.qy * y.qy + y.qz * y.qz + y.qw * y.qw;
   constexpr double kTolerance = Integrator::kUnitQuaternionTolerance;
   constexpr double kLow = (1.0 - kTolerance) * (1.0 - kTolerance), kHigh = (1.0 + kTolerance) * (1.0 + kTolerance);
@@ -418,6 +422,40 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneStep(IntegratorType type, const LaneBody
       return laneEulerStep(b, terms, h, y);
   }
 }
+
+/// Up to `steps` steps of the lanes of y, of which the first `count` hold bodies. A lane stops at its first
+/// step that acceptableLanes refuses: running[i] turns false and done[i] is the steps it took; it computes on
+/// unread (y's lane is then not its state). A lane that never stops has done[i] = steps.
+template <class T>
+RIGID_BODY_LANE_INLINE void runLanes(IntegratorType type, const LaneBody<T>& b, const StepTerms& terms, double h,
+                                     std::int64_t steps, std::size_t count, LaneState<T>& y, std::int64_t* done,
+                                     bool* running) {
+  std::size_t still_running = count;
+  for (std::size_t i = 0; i < count; ++i) {
+    done[i] = steps;
+    running[i] = true;
+  }
+  bool ok[kLaneCount<T>];
+  for (std::int64_t k = 0; k < steps && still_running > 0; ++k) {
+    const LaneState<T> next = laneStep(type, b, terms, h, y);
+    acceptableLanes(next, count, ok);
+    for (std::size_t i = 0; i < count; ++i) {
+      if (!running[i] || ok[i]) continue;
+      running[i] = false;  // Integrator::step's refusal: the step is not taken, the body stops here
+      done[i] = k;
+      --still_running;
+    }
+    y = next;
+  }
+}
+
+/// runLanes for four bodies, compiled twice (wide_lanes.cpp): for the baseline instruction set (x86-64: SSE2,
+/// two 128-bit halves per operation) and for AVX (one 256-bit operation), which `wide` picks. The same IEEE
+/// operations in the same order, no contraction: the same bits either way (tested).
+void runBatch(bool wide, IntegratorType type, const LaneBody<Lanes>& b, const StepTerms& terms, double h,
+              std::int64_t steps, std::size_t count, LaneState<Lanes>& y, std::int64_t* done, bool* running);
+/// Whether this CPU (and its operating system) runs AVX: checked once.
+bool wideLanesAvailable();
 
 /// One body's step by its lane kernel, T = double: what Integrator::step runs for these methods (one
 /// instantiation per method, so that each call site holds its own method's step only).

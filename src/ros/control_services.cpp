@@ -5,15 +5,11 @@
 #include <cmath>
 #include <cstdio>
 
+#include "rigid_body_sim/integrators.hpp"
 #include "rigid_body_sim/kinematics.hpp"
 #include "rigid_body_sim/ros/time_conversion.hpp"
 
 namespace rigid_body_ros {
-
-namespace {
-// set_state accepts a quaternion whose norm is 1 within this, then normalises it.
-constexpr double kUnitQuaternionTolerance = 1e-6;
-}  // namespace
 
 ControlServices::ControlServices(ros::NodeHandle& nh, const NodeConfig& config, rigid_body::World& world,
                                  WrenchInput& wrench_input, std::function<rigid_body::Nanoseconds()> now,
@@ -146,7 +142,7 @@ bool ControlServices::onSetState(std::size_t body, rigid_body_sim::SetState::Req
     response.message = "refused: a non-finite value in pose or twist";
     return true;
   }
-  if (std::abs(q.norm() - 1.0) > kUnitQuaternionTolerance) {
+  if (std::abs(q.norm() - 1.0) > rigid_body::Integrator::kUnitQuaternionTolerance) {  // then normalised
     response.message = "refused: the orientation is not a unit quaternion (|q| = " + std::to_string(q.norm()) +
                        ", allowed 1 +- 1e-6)";
     return true;

@@ -1,6 +1,7 @@
 // Scenes of several bodies and the step assembled from the terms a scene declares.
 #include <gtest/gtest.h>
 
+#include <tuple>
 #include <vector>
 
 #include "rigid_body_sim/kinematics.hpp"
@@ -210,9 +211,10 @@ TEST_P(ThreadedStep, GivesTheOneThreadTrajectoryBitForBit) {
   AppliedWrench huge;  // body 61 overflows under it: it diverges and keeps its last good state
   huge.world.force = Eigen::Vector3d(1e308, 0.0, 0.0);
   bodies[61].initial.P_W.x() = 1.79e308;
-  const auto run = [&](std::size_t threads, std::size_t per_block) {
+  const auto run = [&](std::size_t threads, std::size_t per_block, bool wide) {
     Scene scene(bodies, GetParam(), 0.001);
     scene.setThreads(threads, per_block);
+    scene.setWideLanes(wide);
     std::vector<SceneStepResult> results;
     for (int call = 0; call < 3; ++call) {
       for (std::size_t b = 0; b < bodies.size(); ++b) {
@@ -226,11 +228,13 @@ TEST_P(ThreadedStep, GivesTheOneThreadTrajectoryBitForBit) {
     }
     return std::make_pair(std::move(scene), results);
   };
-  const auto reference = run(1, Scene::kBodiesPerBlock);
+  const auto reference = run(1, Scene::kBodiesPerBlock, true);
   ASSERT_EQ(reference.first.divergence(61), Divergence::kNonFiniteState);
   ASSERT_TRUE(reference.second[0].diverged || reference.second[1].diverged || reference.second[2].diverged);
-  for (const auto& [threads, per_block] : std::vector<std::pair<std::size_t, std::size_t>>{{2, 64}, {3, 7}, {4, 1}, {2, 150}}) {
-    const auto other = run(threads, per_block);
+  // (threads, bodies per block, wide lanes where the CPU has them)
+  for (const auto& [threads, per_block, wide] : std::vector<std::tuple<std::size_t, std::size_t, bool>>{
+           {2, 64, true}, {3, 7, true}, {4, 1, true}, {2, 150, true}, {1, 64, false}, {2, 7, false}}) {
+    const auto other = run(threads, per_block, wide);
     EXPECT_EQ(other.first.threads(), threads);
     for (std::size_t call = 0; call < 3; ++call) {
       EXPECT_EQ(other.second[call].steps, reference.second[call].steps);
@@ -241,7 +245,8 @@ TEST_P(ThreadedStep, GivesTheOneThreadTrajectoryBitForBit) {
       const State& a = other.first.state(b);
       const State& r = reference.first.state(b);
       ASSERT_TRUE(a.p_WB == r.p_WB && a.q_WB.coeffs() == r.q_WB.coeffs() && a.P_W == r.P_W && a.L_W == r.L_W)
-          << threads << " threads, blocks of " << per_block << ": body " << b << " differs";
+          << threads << " threads, blocks of " << per_block << (wide ? "" : ", portable lanes") << ": body " << b
+          << " differs";
       EXPECT_EQ(other.first.divergence(b), reference.first.divergence(b));
       EXPECT_EQ(other.first.integratedSteps(b), reference.first.integratedSteps(b));
     }
@@ -251,11 +256,13 @@ TEST_P(ThreadedStep, GivesTheOneThreadTrajectoryBitForBit) {
 INSTANTIATE_TEST_SUITE_P(AllMethods, ThreadedStep, ::testing::ValuesIn(allIntegrators()),
                          [](const ::testing::TestParamInfo<IntegratorType>& info) { return integratorName(info.param); });
 
-// A scene steps explicit Euler and rk4 bodies four at a time (one per vector lane); each must still take the
-// steps Integrator::step takes for it alone, bit for bit, whatever its neighbours in the batch.
-class BatchedStep : public ::testing::TestWithParam<IntegratorType> {};
+// A scene steps explicit Euler, semi-implicit Euler and rk4 bodies four at a time (one per vector lane); each
+// must still take the steps Integrator::step takes for it alone, bit for bit, whatever its neighbours in the
+// batch, on 256-bit (AVX) lanes and on the portable ones alike.
+class BatchedStep : public ::testing::TestWithParam<std::tuple<IntegratorType, bool>> {};
 
 TEST_P(BatchedStep, GivesEachBodyItsOwnIntegratorStepsBitForBit) {
+  const auto [type, wide] = GetParam();
   const ForceModel damped = dampedFall();
   const MassProperties sphere = kSphere;
   std::vector<BodyDefinition> bodies;
@@ -265,7 +272,8 @@ TEST_P(BatchedStep, GivesEachBodyItsOwnIntegratorStepsBitForBit) {
     bodies.push_back({Model{mass, i % 2 ? damped : ForceModel{}},
                       spinning(mass, Eigen::Vector3d(0.3 * i, 2.0, -0.1 * i)), i % 2 == 1});
   }
-  Scene scene(bodies, GetParam(), 0.001);
+  Scene scene(bodies, type, 0.001);
+  if (scene.setWideLanes(wide) != wide) GTEST_SKIP() << "this CPU has no AVX";
   std::vector<AppliedWrench> inputs(bodies.size());
   for (std::size_t b = 1; b < bodies.size(); b += 2) {
     inputs[b].world.force = Eigen::Vector3d(0.2, -0.1 * b, 1.0);
@@ -275,7 +283,7 @@ TEST_P(BatchedStep, GivesEachBodyItsOwnIntegratorStepsBitForBit) {
   }
   ASSERT_EQ(scene.step(50).steps, 50);
   for (std::size_t b = 0; b < bodies.size(); ++b) {
-    Integrator alone(GetParam());
+    Integrator alone(type);
     State state = bodies[b].initial;
     for (int k = 0; k < 50; ++k) ASSERT_EQ(alone.step(bodies[b].model, scene.terms(b), inputs[b], 0.001, state), StepStatus::kOk);
     const State& batched = scene.state(b);
@@ -285,5 +293,7 @@ TEST_P(BatchedStep, GivesEachBodyItsOwnIntegratorStepsBitForBit) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(AllMethods, BatchedStep, ::testing::ValuesIn(allIntegrators()),
-                         [](const ::testing::TestParamInfo<IntegratorType>& info) { return integratorName(info.param); });
+INSTANTIATE_TEST_SUITE_P(AllMethods, BatchedStep, ::testing::Combine(::testing::ValuesIn(allIntegrators()), ::testing::Bool()),
+                         [](const ::testing::TestParamInfo<std::tuple<IntegratorType, bool>>& info) {
+                           return integratorName(std::get<0>(info.param)) + (std::get<1>(info.param) ? "_wide" : "_portable");
+                         });
