@@ -11,7 +11,7 @@ export PATH="/usr/bin:/bin:$PATH"
 DEBIAN_PACKAGES=(
   build-essential cmake
   ros-core-dev rosbash catkin python3-catkin-pkg python3-rospkg
-  libtf2-ros-dev libtf2-eigen-dev libtf2-geometry-msgs-dev
+  libtf2-ros-dev libtf2-msgs-dev libtf2-eigen-dev libtf2-geometry-msgs-dev
   ros-nav-msgs ros-geometry-msgs ros-std-srvs libstd-srvs-dev libnav-msgs-dev libgeometry-msgs-dev
   python3-rostest librostest-dev python3-rostopic python3-roslaunch
   python3-nav-msgs python3-geometry-msgs python3-std-msgs python3-std-srvs python3-tf2-msgs python3-tf2-ros

@@ -26,7 +26,8 @@ std::string withoutLeadingSlash(const std::string& frame) {
 
 WrenchInput::WrenchInput(ros::NodeHandle& nh, const NodeConfig& config, rigid_body::World& world,
                          std::function<rigid_body::Nanoseconds()> now)
-    : config_(config), world_(world), now_(std::move(now)), tf_listener_(tf_buffer_) {
+    : config_(config), world_(world), now_(std::move(now)), foreign_transforms_(tf_buffer_) {
+  for (std::size_t body = 0; body < config.bodies.size(); ++body) body_by_frame_[config.bodies[body].body_frame] = body;
   if (!config.publish.per_body_topics) {
     // One subscriber for the whole scene; the bodies found by name.
     for (std::size_t body = 0; body < config.bodies.size(); ++body) body_by_name_[config.bodies[body].name] = body;
@@ -70,16 +71,31 @@ bool WrenchInput::accept(const geometry_msgs::Wrench& wrench) {
   return false;
 }
 
-bool WrenchInput::hangsBelow(const std::string& frame, const std::string& body_frame) const {
-  const tf2::BufferCore& core = tf_buffer_;
+std::optional<std::size_t> WrenchInput::bodyAbove(const std::string& frame) const {
   std::string current = frame, parent;
-  // Up the tree from `frame` (a bounded walk: a tree deeper than this is not a robot's body).
-  for (int depth = 0; depth < kMaxTreeDepth && core._getParent(current, ros::Time(0), parent); ++depth) {
-    if (parent == body_frame) return true;
-    if (parent == current) return false;
+  // Up the tree from `frame` (a bounded walk: a tree deeper than this is not a robot's body). A body's frame
+  // has no parent in the buffer (the node's own /tf stays out), so the walk ends at the first one.
+  for (int depth = 0; depth < kMaxTreeDepth; ++depth) {
+    const auto found = body_by_frame_.find(current);
+    if (found != body_by_frame_.end()) return found->second;
+    if (!tf_buffer_._getParent(current, ros::Time(0), parent) || parent == current) return std::nullopt;
     current = parent;
   }
-  return false;
+  return std::nullopt;
+}
+
+Eigen::Isometry3d WrenchInput::lookup(const std::string& target, const std::string& source, const ros::Time& stamp) const {
+  if (target == source) return Eigen::Isometry3d::Identity();
+  const ros::Time when = !stamp.isZero() && tf_buffer_.canTransform(target, source, stamp, nullptr) ? stamp : ros::Time(0);
+  return tf2::transformToEigen(tf_buffer_.lookupTransform(target, source, when));
+}
+
+Eigen::Isometry3d WrenchInput::publishedPose(std::size_t body) const {
+  const rigid_body::State& state = world_.scene().state(body);
+  Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
+  X_WB.linear() = state.q_WB.toRotationMatrix();
+  X_WB.translation() = state.p_WB;
+  return X_WB * config_.bodies[body].X_BP;
 }
 
 void WrenchInput::warnUnknownFrame(const std::string& frame, const std::string& error) {
@@ -126,40 +142,33 @@ bool WrenchInput::convert(std::size_t body, const geometry_msgs::Wrench& wrench,
       }
       break;
     case WrenchFrame::kOther: {
-      const tf2::BufferCore& core = tf_buffer_;
-      if (hangsBelow(frame, config_.bodies[body].body_frame)) {
-        // A frame of the body itself (a thruster or sensor link published relative to body_frame): the wrench
-        // is fixed in the body, F_B = R_BF F_F and τ_B = R_BF τ_F + p_BQ × F_B with Q the frame's origin (or
-        // the point), so it turns with the body and its lever arm stays fixed in body axes.
-        geometry_msgs::TransformStamped X_BF;
-        try {
-          X_BF = core.lookupTransform(config_.bodies[body].body_frame, frame, ros::Time(0));
-        } catch (const tf2::TransformException& exception) {
-          ++rejections_.unknown_frame;
-          warnUnknownFrame(frame, exception.what());
-          return false;
-        }
-        // tf gives the frame in the published frame P; X_BF = X_BP X_PF (X_BP the identity but for a URDF link).
-        const Eigen::Isometry3d X_BF_eigen = config_.bodies[body].X_BP * tf2::transformToEigen(X_BF);
-        const WrenchAtPoint at = wrenchAtPointInWorld(wrench, X_BF_eigen, point);  // "world" = B here
-        out.wrench.body.force = at.wrench_W.force;
-        out.wrench.body.torque = at.wrench_W.torque + at.p_WQ.cross(at.wrench_W.force);
-        finite = out.wrench.body.isFinite();
-        break;
-      }
-      // Any other frame: at the stamp if tf2 has it, else the latest transform; never a wait.
-      geometry_msgs::TransformStamped X_WF;
-      std::string error;
+      // The frame's place: below one of this node's bodies (the body's pose now, then tf2 from its published
+      // frame P), or elsewhere in the tree (tf2 from the world frame); at the stamp if tf2 has it, else the
+      // latest transform; never a wait.
+      std::optional<std::size_t> owner;
+      Eigen::Isometry3d X_AF;  // from the frame F to the anchor A: P of the owner, or the world frame
       try {
-        const ros::Time when =
-            !stamp.isZero() && core.canTransform(config_.world_frame, frame, stamp, &error) ? stamp : ros::Time(0);
-        X_WF = core.lookupTransform(config_.world_frame, frame, when);
+        owner = bodyAbove(frame);
+        X_AF = lookup(owner ? config_.bodies[*owner].body_frame : config_.world_frame, frame, stamp);
       } catch (const tf2::TransformException& exception) {
         ++rejections_.unknown_frame;
         warnUnknownFrame(frame, exception.what());
         return false;
       }
-      const WrenchAtPoint at = wrenchAtPointInWorld(wrench, tf2::transformToEigen(X_WF), point);
+      if (owner && *owner == body) {
+        // A frame of the body itself (a thruster or sensor link published relative to body_frame): the wrench
+        // is fixed in the body, F_B = R_BF F_F and τ_B = R_BF τ_F + p_BQ × F_B with Q the frame's origin (or
+        // the point), so it turns with the body and its lever arm stays fixed in body axes. X_BF = X_BP X_PF
+        // (X_BP the identity but for a URDF link).
+        const WrenchAtPoint at = wrenchAtPointInWorld(wrench, config_.bodies[body].X_BP * X_AF, point);  // "world" = B
+        out.wrench.body.force = at.wrench_W.force;
+        out.wrench.body.torque = at.wrench_W.torque + at.p_WQ.cross(at.wrench_W.force);
+        finite = out.wrench.body.isFinite();
+        break;
+      }
+      // Any other frame (another body's included): held in world axes at the point where it is now.
+      const Eigen::Isometry3d X_WF = owner ? publishedPose(*owner) * X_AF : X_AF;
+      const WrenchAtPoint at = wrenchAtPointInWorld(wrench, X_WF, point);
       out.wrench.world = at.wrench_W;
       out.has_point = true;
       out.p_WQ = at.p_WQ;

@@ -54,8 +54,8 @@ TEST(Scene, AllBodiesGoOutInOneTfMessagePerTick) {
   ASSERT_TRUE(tf.waitForCount(10));
   int from_scene = 0;
   for (const tf2_msgs::TFMessage& message : tf.messages) {
-    // Two nodes of this launch file publish /tf: the other one's messages are its own three bodies.
-    if (message.transforms.empty() || message.transforms[0].child_frame_id == "first") continue;
+    // Every node of this launch file publishes /tf: this node's messages start with its box.
+    if (message.transforms.empty() || message.transforms[0].child_frame_id != "box") continue;
     ++from_scene;
     ASSERT_EQ(message.transforms.size(), 3u);
     EXPECT_EQ(message.transforms[0].child_frame_id, "box");
@@ -94,6 +94,27 @@ TEST(Scene, EachBodyMovesOnlyUnderItsOwnWrench) {
   EXPECT_NEAR(position(now).z() - position(drifter_before).z(), elapsed, 1e-9);
   EXPECT_NEAR(worldVelocity(now).z(), 1.0, 1e-12);
   EXPECT_NEAR(worldVelocity(now).x(), 0.0, 1e-12);
+  push.publish(wrench("world", 0.0, 0.0, 0.0));
+}
+
+TEST(Scene, AWrenchInAnotherBodysFrameActsAtThatBodyAlongItsAxes) {
+  ros::NodeHandle nh;
+  Recorder<nav_msgs::Odometry> a(nh, "pair/a/odom");
+  ASSERT_TRUE(a.waitForCount(1));
+  ros::Publisher push = advertiseWrench(nh, "pair/a");
+  // 1 N along b's x axis, world +y (b is yawed by 90°), at b's origin (2, 0, 0): on a (1 kg, I = 2/5 m r² =
+  // 0.1 kg m², at the origin) a force along +y and a torque (2, 0, 0) × (0, 1, 0) = (0, 0, 2) N m, held in world
+  // axes at that point while a moves along y (the lever arm's x stays 2). So v_y = t/m and ω_z = 2 t/I: ω_z/v_y
+  // = 20 1/m. b's identity orientation would push along x with no torque; its origin taken as a's, no torque.
+  push.publish(wrench("b", 1.0, 0.0, 0.0));
+  ASSERT_TRUE(waitUntil([&] { return worldVelocity(a.messages.back()).y() > 0.2; }));
+  const nav_msgs::Odometry& now = a.messages.back();
+  const Eigen::Vector3d v = worldVelocity(now);
+  EXPECT_NEAR(v.x(), 0.0, 1e-9);
+  EXPECT_NEAR(v.z(), 0.0, 1e-9);
+  EXPECT_NEAR(now.twist.twist.angular.z / v.y(), 20.0, 1e-6);  // about z: body and world z agree
+  EXPECT_NEAR(now.twist.twist.angular.x, 0.0, 1e-9);
+  EXPECT_NEAR(now.twist.twist.angular.y, 0.0, 1e-9);
   push.publish(wrench("world", 0.0, 0.0, 0.0));
 }
 

@@ -1,25 +1,29 @@
 // Wrench messages into core commands: limits and finiteness checked (rejections counted by reason, warned
 // at most every few seconds), the frame resolved through tf2 once, at arrival, and the result handed to the
 // World stamped with its arrival. A frame that hangs below body_frame in the tf tree is part of the body:
-// its wrench is held in body axes (it turns with the body); any other frame's is held in world axes. Owns the per-body wrench subscribers and the tf2 listener. A tf2 lookup
-// never waits: the transform at the message's stamp if tf2 has it, else the latest one, else the wrench is
-// refused at once (a callback that waited would hold up the timer on the node's single spinner thread).
+// its wrench is held in body axes (it turns with the body); any other frame's is held in world axes. Owns the
+// per-body wrench subscribers and the tf2 buffer of the other nodes' transforms (ForeignTransforms). A tf2
+// lookup never waits: the transform at the message's stamp if tf2 has it, else the latest one, else the
+// wrench is refused at once (a callback that waited would hold up the timer on the node's single spinner
+// thread). The node's own bodies are not in the buffer: a frame that hangs below one of them (or is one)
+// is placed by that body's current pose in the World, exact, with the rest of the chain from tf2.
 #pragma once
 
 #include <geometry_msgs/Wrench.h>
 #include <geometry_msgs/WrenchStamped.h>
 #include <ros/ros.h>
-#include <tf2_ros/buffer.h>
-#include <tf2_ros/transform_listener.h>
+#include <tf2/buffer_core.h>
 
 #include <cstdint>
 #include <functional>
 #include <map>
-#include <unordered_map>
+#include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "rigid_body_sim/BodyWrenches.h"
+#include "rigid_body_sim/ros/foreign_transforms.hpp"
 #include "rigid_body_sim/ros/parameters.hpp"
 #include "rigid_body_sim/world.hpp"
 
@@ -69,15 +73,22 @@ class WrenchInput {
   void onBodyWrenches(const rigid_body_sim::BodyWrenches& message);
   void submit(std::size_t body, const ConvertedWrench& converted);
   void warnUnknownFrame(const std::string& frame, const std::string& error);
-  /// True if `frame` has body_frame among its ancestors in the tf tree (it is attached to the body).
-  bool hangsBelow(const std::string& frame, const std::string& body_frame) const;
+  /// The first of this node's bodies met going up the tf tree from `frame` (`frame` itself included): the
+  /// body it is attached to, if any.
+  std::optional<std::size_t> bodyAbove(const std::string& frame) const;
+  /// The transform from `source` to `target` at `stamp` if tf2 has it, else the latest one; throws
+  /// tf2::TransformException if there is none.
+  Eigen::Isometry3d lookup(const std::string& target, const std::string& source, const ros::Time& stamp) const;
+  /// Where a body's published frame is now: X_WP = X_WB X_BP, from the World.
+  Eigen::Isometry3d publishedPose(std::size_t body) const;
 
   const NodeConfig& config_;
   rigid_body::World& world_;
   std::function<rigid_body::Nanoseconds()> now_;
   WrenchRejections rejections_;
-  tf2_ros::Buffer tf_buffer_;
-  tf2_ros::TransformListener tf_listener_;
+  tf2::BufferCore tf_buffer_;
+  ForeignTransforms foreign_transforms_;  ///< fills tf_buffer_
+  std::unordered_map<std::string, std::size_t> body_by_frame_;  ///< this node's published frames
   std::vector<ros::Subscriber> subscribers_;
   std::map<std::string, ros::WallTime> last_frame_warning_;  ///< per unknown frame (bounded)
   std::unordered_map<std::string, std::size_t> body_by_name_;  ///< for bodies/wrench

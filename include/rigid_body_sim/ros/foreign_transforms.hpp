@@ -1,0 +1,41 @@
+// The tf tree as the other nodes publish it: /tf and /tf_static into a tf2 buffer, like tf2_ros's
+// TransformListener, except the node's own /tf messages. The node publishes every body's pose on /tf at the
+// output rate; taking them back in would insert each of them into the buffer again (for 10 000 bodies a
+// million insertions a second, measured as a sixth of the node's time), only to read back a pose the World
+// holds exactly. Lookups through a body of this node use the World's pose instead (WrenchInput).
+#pragma once
+
+#include <ros/callback_queue.h>
+#include <ros/ros.h>
+#include <tf2/buffer_core.h>
+#include <tf2_msgs/TFMessage.h>
+
+#include <atomic>
+#include <string>
+#include <thread>
+
+namespace rigid_body_ros {
+
+class ForeignTransforms {
+ public:
+  /// Fills `buffer` from /tf (but for this node's own messages) and /tf_static, on a thread of its own, as
+  /// tf2_ros's listener does: the buffer stays current while the node's spinner is busy.
+  explicit ForeignTransforms(tf2::BufferCore& buffer);
+  ~ForeignTransforms();
+  ForeignTransforms(const ForeignTransforms&) = delete;
+  ForeignTransforms& operator=(const ForeignTransforms&) = delete;
+
+ private:
+  void onTransforms(const ros::MessageEvent<tf2_msgs::TFMessage const>& event, bool is_static);
+
+  tf2::BufferCore& buffer_;
+  const std::string own_name_;
+  ros::CallbackQueue queue_;
+  ros::NodeHandle nh_;
+  ros::Subscriber tf_, tf_static_;
+  ros::Time last_update_;
+  std::atomic<bool> running_{true};
+  std::thread thread_;
+};
+
+}  // namespace rigid_body_ros

@@ -1,0 +1,53 @@
+#include "rigid_body_sim/ros/foreign_transforms.hpp"
+
+#include <tf2/exceptions.h>
+
+namespace rigid_body_ros {
+
+namespace {
+// Subscriber queues, as tf2_ros's listener has them.
+constexpr uint32_t kQueueSize = 100;
+}  // namespace
+
+ForeignTransforms::ForeignTransforms(tf2::BufferCore& buffer)
+    : buffer_(buffer), own_name_(ros::this_node::getName()) {
+  nh_.setCallbackQueue(&queue_);
+  tf_ = nh_.subscribe<tf2_msgs::TFMessage>(
+      "/tf", kQueueSize, [this](const ros::MessageEvent<tf2_msgs::TFMessage const>& event) { onTransforms(event, false); });
+  tf_static_ = nh_.subscribe<tf2_msgs::TFMessage>(
+      "/tf_static", kQueueSize,
+      [this](const ros::MessageEvent<tf2_msgs::TFMessage const>& event) { onTransforms(event, true); });
+  thread_ = std::thread([this] {
+    while (running_) queue_.callAvailable(ros::WallDuration(0.01));
+  });
+}
+
+ForeignTransforms::~ForeignTransforms() {
+  running_ = false;
+  thread_.join();
+}
+
+void ForeignTransforms::onTransforms(const ros::MessageEvent<tf2_msgs::TFMessage const>& event, bool is_static) {
+  // The node's own dynamic transforms stay out (its static ones, a mesh frame below a body, go in: frames of
+  // the body are found through them). They arrive within the process, without a connection header (roscpp
+  // then names the publisher "unknown_publisher"); over a connection they would carry the node's name.
+  if (!is_static && (!event.getConnectionHeaderPtr() || event.getPublisherName() == own_name_)) return;
+  // Time went back (a simulation clock restarted): the buffer's history is from another run.
+  const ros::Time now = ros::Time::now();
+  if (now < last_update_) {
+    ROS_WARN("rigid_body_node: time went back by %.3f s: the tf buffer is cleared", (last_update_ - now).toSec());
+    buffer_.clear();
+  }
+  last_update_ = now;
+  const std::string& authority = event.getPublisherName();
+  for (const geometry_msgs::TransformStamped& transform : event.getConstMessage()->transforms) {
+    try {
+      buffer_.setTransform(transform, authority, is_static);
+    } catch (const tf2::TransformException& exception) {
+      ROS_WARN_THROTTLE(2.0, "rigid_body_node: a transform from %s refused by tf2: %s", authority.c_str(),
+                        exception.what());
+    }
+  }
+}
+
+}  // namespace rigid_body_ros
