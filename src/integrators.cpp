@@ -82,6 +82,11 @@ StepStatus Integrator::step(const Model& model, const StepTerms& terms, const Ap
                             State& state) {
   if (!std::isfinite(h) || h < 0.0) return StepStatus::kInvalidStep;
   if (h == 0.0) return StepStatus::kOk;
+  if (hasLaneStep(type_)) {  // these commit in place, and only a step that passes acceptable()'s test
+    const StepStatus status = doStep(model, terms, input, h, state);
+    if (status == StepStatus::kOk) ++statistics_.steps;
+    return status;
+  }
   State next = state;
   const StepStatus status = doStep(model, terms, input, h, next);
   if (status != StepStatus::kOk) return status;
@@ -96,16 +101,13 @@ StepStatus Integrator::doStep(const Model& model, const StepTerms& terms, const 
   switch (type_) {
     case IntegratorType::kExplicitEuler:
       statistics_.rhs_evaluations += 1;
-      state = laneStep<IntegratorType::kExplicitEuler>(model, terms, input, h, state);
-      return StepStatus::kOk;
+      return laneStep<IntegratorType::kExplicitEuler>(model, terms, input, h, state) ? StepStatus::kOk : StepStatus::kNonFinite;
     case IntegratorType::kSemiImplicitEuler:
       statistics_.rhs_evaluations += 1;
-      state = laneStep<IntegratorType::kSemiImplicitEuler>(model, terms, input, h, state);
-      return StepStatus::kOk;
+      return laneStep<IntegratorType::kSemiImplicitEuler>(model, terms, input, h, state) ? StepStatus::kOk : StepStatus::kNonFinite;
     case IntegratorType::kRk4:
       statistics_.rhs_evaluations += 4;
-      state = laneStep<IntegratorType::kRk4>(model, terms, input, h, state);
-      return StepStatus::kOk;
+      return laneStep<IntegratorType::kRk4>(model, terms, input, h, state) ? StepStatus::kOk : StepStatus::kNonFinite;
     case IntegratorType::kRkmk4: {
       Stages<4> stages;
       statistics_.rhs_evaluations += 4;

@@ -154,8 +154,7 @@ template <class T>
 RIGID_BODY_LANE_INLINE void laneWrench(const LaneBody<T>& b, const StepTerms& terms, bool need_w, const LaneState<T>& y,
                                        const Vec<T>& v, const LaneRotation<T>* rotation, Vec<T>& force,
                                        Vec<T>& torque, Vec<T>& w) {
-  const Vec<T> zero = T{} * v;  // zeros of the lane type
-  force = torque = w = zero;
+  force = torque = w = Vec<T>{T{}, T{}, T{}};
   if (terms.input || (need_w && terms.world_inertia)) {
     const LaneRotation<T> R = rotation != nullptr ? *rotation : LaneRotation<T>(y);
     if (need_w && terms.world_inertia) {
@@ -458,17 +457,20 @@ void runBatch(bool wide, IntegratorType type, const LaneBody<Lanes>& b, const St
 bool wideLanesAvailable();
 
 /// One body's step by its lane kernel, T = double: what Integrator::step runs for these methods (one
-/// instantiation per method, so that each call site holds its own method's step only).
+/// instantiation per method, so that each call site holds its own method's step only). The result goes into
+/// `state` only if acceptableLanes accepts it; returns whether it did.
 template <IntegratorType kType>
-RIGID_BODY_LANE_INLINE State laneStep(const Model& model, const StepTerms& terms, const AppliedWrench& input,
-                                      double h, const State& y) {
+RIGID_BODY_LANE_INLINE bool laneStep(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h,
+                                     State& state) {
   LaneBody<double> b;
   loadBody(b, 0, kType, terms, model, input);
-  LaneState<double> lanes;
-  loadState(lanes, 0, y);
-  State next;
-  storeState(laneStep(kType, b, terms, h, lanes), 0, next);
-  return next;
+  LaneState<double> y;
+  loadState(y, 0, state);
+  const LaneState<double> next = laneStep(kType, b, terms, h, y);
+  bool ok = false;
+  acceptableLanes(next, 1, &ok);
+  if (ok) storeState(next, 0, state);
+  return ok;
 }
 
 }  // namespace integrators
