@@ -312,14 +312,21 @@ inline void storeState(const LaneState<T>& y, std::size_t i, State& state) {
 template <class T>
 __attribute__((noinline)) void turnByExactFlow(const LaneBody<T>& b, bool world_inertia, double h, LaneState<T>& next) {
   for (std::size_t i = 0; i < kLaneCount<T>; ++i) {
-    State s;
-    storeState(next, i, s);
     if (world_inertia) {
+      State s;
+      storeState(next, i, s);
       symmetricTopFlow(*b.mass[i], h, s);
-    } else {
-      s.q_WB = quaternionExp((h * laneValue(b.j0, i)) * s.L_W) * s.q_WB;
+      loadState(next, i, s);
+      continue;
     }
-    loadState(next, i, s);
+    // q ← exp(h L/I₀) ⊗ q: only q changes, read and written in the lane (no State in between).
+    const Eigen::Vector3d L(laneValue(next.L.x, i), laneValue(next.L.y, i), laneValue(next.L.z, i));
+    const Eigen::Quaterniond q(laneValue(next.qw, i), laneValue(next.qx, i), laneValue(next.qy, i), laneValue(next.qz, i));
+    const Eigen::Quaterniond turned = quaternionExp((h * laneValue(b.j0, i)) * L) * q;
+    setLane(next.qx, i, turned.x());
+    setLane(next.qy, i, turned.y());
+    setLane(next.qz, i, turned.z());
+    setLane(next.qw, i, turned.w());
   }
 }
 
