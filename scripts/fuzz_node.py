@@ -2,7 +2,8 @@
 """Seeded fuzzing of a running rigid_body_node (started by scripts/fuzz_node.sh against a private master).
 
 Sends wrenches with extreme and non-finite components in odd frames with odd stamps, on both wrench topics,
-and calls every service with extreme arguments, for a given time. Meanwhile it reads odom, state,
+publishes odd transforms on /tf (non-finite values, zero quaternions, loops, a spoofed parent of the body
+frame, frames below the body), and calls every service with extreme arguments, for a given time. Meanwhile it reads odom, state,
 applied_wrench and /tf and reports: messages sent, service calls made (and how many timed out), non-finite
 values published (must be 0), odometry stamps that did not increase, the odometry rate over the last
 seconds, and whether the node still answers get_state. Exit code 1 if anything must-not-happen happened.
@@ -16,7 +17,7 @@ import threading
 import time
 
 import rospy
-from geometry_msgs.msg import Wrench, WrenchStamped
+from geometry_msgs.msg import TransformStamped, Wrench, WrenchStamped
 from nav_msgs.msg import Odometry
 from rigid_body_sim.msg import RigidBodyState
 from rigid_body_sim.srv import ApplyWrench, ApplyWrenchRequest, GetState, SetState, SetStateRequest, Step
@@ -27,7 +28,10 @@ from tf2_msgs.msg import TFMessage
 EXTREMES = [0.0, 1.0, -1.0, 1e-300, -1e-300, 5e-324, 1e3, 1e100, 1e300, -1e300, 1.7976931348623157e308,
             -1.7976931348623157e308, float("nan"), float("inf"), float("-inf")]
 FRAMES = ["", "world", "base_link", "/world", "//world", "/", "unknown", "/unknown", "base_link ", "a" * 300,
-          "world/", "\u00e9t\u00e9", "map", "odom"]
+          "world/", "\u00e9t\u00e9", "map", "odom", "thruster", "loop_a", "loop_b"]
+# Parent and child frames of the transforms sent on /tf: below the body, beside it, in a loop, over it.
+TF_EDGES = [("base_link", "thruster"), ("world", "map"), ("map", "odom"), ("loop_a", "loop_b"), ("loop_b", "loop_a"),
+            ("thruster", "base_link"), ("world", "base_link"), ("odom", "odom"), ("", "thruster"), ("map", "")]
 
 
 def number(rng):
@@ -53,6 +57,7 @@ class Watch:
         rospy.Subscriber(ns + "/state", RigidBodyState, self.on_state, queue_size=1000)
         rospy.Subscriber(ns + "/applied_wrench", WrenchStamped, self.on_wrench, queue_size=1000)
         rospy.Subscriber("/tf", TFMessage, self.on_tf, queue_size=1000)
+        self.own_name = rospy.get_name()
 
     def count(self, ok):
         with self.lock:
@@ -84,6 +89,8 @@ class Watch:
         self.count(finite(f.x, f.y, f.z, t.x, t.y, t.z))
 
     def on_tf(self, m):
+        if m._connection_header.get("callerid") == self.own_name:
+            return  # the fuzzer's own transforms
         for t in m.transforms:
             r, q = t.transform.translation, t.transform.rotation
             self.count(finite(r.x, r.y, r.z, q.x, q.y, q.z, q.w))
@@ -111,6 +118,20 @@ def random_wrench(rng):
     return w
 
 
+def random_transforms(rng):
+    m = TFMessage()
+    for _ in range(rng.choice([1, 2, 5, 1000])):
+        t = TransformStamped()
+        t.header.frame_id, t.child_frame_id = rng.choice(TF_EDGES)
+        t.header.stamp = random_stamp(rng) if rng.random() < 0.5 else rospy.Time.now()
+        r, q = t.transform.translation, t.transform.rotation
+        r.x, r.y, r.z = number(rng), number(rng), number(rng)
+        q.x, q.y, q.z, q.w = rng.choice([(0, 0, 0, 1), (0, 0, 0, 0), (number(rng), number(rng), 0, 1),
+                                          (0, 0, 0.70710678118654752, 0.70710678118654752)])
+        m.transforms.append(t)
+    return m
+
+
 def random_stamp(rng):
     choice = rng.randint(0, 4)
     if choice == 0:
@@ -131,12 +152,13 @@ def main():
     watch = Watch(ns)
     stamped = rospy.Publisher(ns + "/wrench", WrenchStamped, queue_size=100)
     unstamped = rospy.Publisher(ns + "/wrench_unstamped", Wrench, queue_size=100)
+    transforms = rospy.Publisher("/tf", TFMessage, queue_size=100)
     types = {"apply_wrench": ApplyWrench, "set_state": SetState, "get_state": GetState, "step": Step,
              "pause": Empty, "unpause": Empty, "reset": Empty, "reset_time": Trigger, "clear_wrenches": Empty}
     services = {name: rospy.ServiceProxy(ns + "/" + name, kind) for name, kind in types.items()}
     rospy.wait_for_service(ns + "/get_state", timeout=30)
     time.sleep(1.0)
-    sent = calls = hung = 0
+    sent = sent_tf = calls = hung = 0
     end = time.monotonic() + seconds
     while time.monotonic() < end and not rospy.is_shutdown():
         kind = rng.random()
@@ -147,9 +169,12 @@ def main():
             m.wrench = random_wrench(rng)
             stamped.publish(m)
             sent += 1
-        elif kind < 0.8:
+        elif kind < 0.7:
             unstamped.publish(random_wrench(rng))
             sent += 1
+        elif kind < 0.8:
+            transforms.publish(random_transforms(rng))
+            sent_tf += 1
         else:
             name = rng.choice(sorted(services))
             proxy = services[name]
@@ -185,7 +210,8 @@ def main():
         recent = [s for s in watch.odom_stamps if s[1] > time.monotonic() - 2.0]
     odom_hz = (len(recent) - 1) / (recent[-1][0] - recent[0][0]) if len(recent) > 2 else 0.0
     alive = call_with_timeout(lambda: services["get_state"](), timeout=5.0)
-    print(f"fuzz: seed {seed}, {seconds:g} s: {sent} wrench messages sent, {calls} service calls ({hung} not "
+    print(f"fuzz: seed {seed}, {seconds:g} s: {sent} wrench messages and {sent_tf} /tf messages sent, {calls} "
+          f"service calls ({hung} not "
           f"answered within 5 s); {watch.messages} messages received, {watch.non_finite} with a non-finite value, "
           f"{watch.stamp_anomalies} odometry stamps not increasing; odometry {odom_hz:.1f} Hz over the last 2 s; "
           f"node {'answers' if alive else 'DOES NOT ANSWER'}")
