@@ -312,17 +312,14 @@ inline void storeState(const LaneState<T>& y, std::size_t i, State& state) {
 template <class T>
 __attribute__((noinline)) void turnByExactFlow(const LaneBody<T>& b, bool world_inertia, double h, LaneState<T>& next) {
   for (std::size_t i = 0; i < kLaneCount<T>; ++i) {
-    if (world_inertia) {
-      State s;
-      storeState(next, i, s);
-      symmetricTopFlow(*b.mass[i], h, s);
-      loadState(next, i, s);
-      continue;
-    }
-    // q ← exp(h L/I₀) ⊗ q: only q changes, read and written in the lane (no State in between).
+    // Only q changes (world L is fixed over either flow): read and written in the lane, no State in between.
     const Eigen::Vector3d L(laneValue(next.L.x, i), laneValue(next.L.y, i), laneValue(next.L.z, i));
-    const Eigen::Quaterniond q(laneValue(next.qw, i), laneValue(next.qx, i), laneValue(next.qy, i), laneValue(next.qz, i));
-    const Eigen::Quaterniond turned = quaternionExp((h * laneValue(b.j0, i)) * L) * q;
+    Eigen::Quaterniond turned(laneValue(next.qw, i), laneValue(next.qx, i), laneValue(next.qy, i), laneValue(next.qz, i));
+    if (world_inertia) {
+      symmetricTopFlow(*b.mass[i], h, L, turned);
+    } else {
+      turned = quaternionExp((h * laneValue(b.j0, i)) * L) * turned;  // exp(h L/I₀) ⊗ q
+    }
     setLane(next.qx, i, turned.x());
     setLane(next.qy, i, turned.y());
     setLane(next.qz, i, turned.z());

@@ -19,6 +19,8 @@ bool isSymmetricTop(const MassProperties& mass);
 /// A symmetric top (two equal principal moments) turns exactly over h at fixed world L: its two flows commute.
 /// Returns false, leaving s alone, for an asymmetric body (splitting.cpp).
 bool symmetricTopFlow(const MassProperties& mass, double h, State& s);
+/// The same on q alone (world L is fixed over the flow).
+bool symmetricTopFlow(const MassProperties& mass, double h, const Eigen::Vector3d& L_W, Eigen::Quaterniond& q_WB);
 StepStatus symplecticSplittingStep(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h,
                                    State& s);
 StepStatus implicitMidpointStep(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h,

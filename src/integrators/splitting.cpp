@@ -74,11 +74,17 @@ StepStatus strangSplitting(const Model& model, const StepTerms& terms, const App
 // the top's exact motion (docs/references.md, torque-free symmetric top), and for a sphere a single rotation about L.
 constexpr double kEqualMoments = 1e-12;  // relative difference below which two moments count as equal
 
-void rotateAboutBodyAxis(const MassProperties& mass, int axis, double t, double inverse_reference, State& s) {
+// q turned about principal axis `axis` at fixed world L (it moves only q).
+void rotateAboutBodyAxis(const MassProperties& mass, int axis, double t, double inverse_reference,
+                         const Eigen::Vector3d& L_W, Eigen::Quaterniond& q_WB) {
   const Eigen::Vector3d u_B = mass.principalAxes().col(axis);
-  const double m_i = u_B.dot(s.q_WB.conjugate() * s.L_W);
+  const double m_i = u_B.dot(q_WB.conjugate() * L_W);
   const double I_i = mass.principalMoments()(axis);
-  s.q_WB = s.q_WB * quaternionExp((t * (1.0 / I_i - inverse_reference) * m_i) * u_B);
+  q_WB = q_WB * quaternionExp((t * (1.0 / I_i - inverse_reference) * m_i) * u_B);
+}
+
+void rotateAboutBodyAxis(const MassProperties& mass, int axis, double t, double inverse_reference, State& s) {
+  rotateAboutBodyAxis(mass, axis, t, inverse_reference, s.L_W, s.q_WB);
 }
 
 StepStatus splitFreeRotation(const MassProperties& mass, double h, State& s) {
@@ -128,17 +134,19 @@ bool isSymmetricTop(const MassProperties& mass) {
   return I(1) - I(0) <= tolerance || I(2) - I(1) <= tolerance;
 }
 
-bool symmetricTopFlow(const MassProperties& mass, double h, State& s) {
+bool symmetricTopFlow(const MassProperties& mass, double h, const Eigen::Vector3d& L_W, Eigen::Quaterniond& q_WB) {
   if (!isSymmetricTop(mass)) return false;
   const Eigen::Vector3d& I = mass.principalMoments();  // ascending
   const double tolerance = kEqualMoments * I(2);
   // The odd axis s is the one not in the equal pair (either end; for a sphere its term vanishes).
   const int odd = I(1) - I(0) <= tolerance ? 2 : 0;
   const double I_r = I(1);
-  rotateAboutBodyAxis(mass, odd, h, 1.0 / I_r, s);
-  s.q_WB = quaternionExp((h / I_r) * s.L_W) * s.q_WB;
+  rotateAboutBodyAxis(mass, odd, h, 1.0 / I_r, L_W, q_WB);
+  q_WB = quaternionExp((h / I_r) * L_W) * q_WB;
   return true;
 }
+
+bool symmetricTopFlow(const MassProperties& mass, double h, State& s) { return symmetricTopFlow(mass, h, s.L_W, s.q_WB); }
 
 StepStatus symplecticSplittingStep(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h,
                                    State& s) {
