@@ -73,7 +73,7 @@ bool Integrator::acceptable(const State& next) {
 
 void Integrator::countSteps(std::uint64_t steps) {
   statistics_.steps += steps;
-  statistics_.rhs_evaluations += steps * (type_ == IntegratorType::kRk4 ? 4 : 1);
+  statistics_.rhs_evaluations += steps * laneRhsEvaluations(type_);
 }
 
 Integrator::Integrator(IntegratorType type, const IntegratorSettings& settings) : type_(type), settings_(settings) {}
@@ -100,13 +100,13 @@ StepStatus Integrator::doStep(const Model& model, const StepTerms& terms, const 
                               State& state) {
   switch (type_) {
     case IntegratorType::kExplicitEuler:
-      statistics_.rhs_evaluations += 1;
+      statistics_.rhs_evaluations += laneRhsEvaluations(type_);
       return laneStep<IntegratorType::kExplicitEuler>(model, terms, input, h, state) ? StepStatus::kOk : StepStatus::kNonFinite;
     case IntegratorType::kSemiImplicitEuler:
-      statistics_.rhs_evaluations += 1;
+      statistics_.rhs_evaluations += laneRhsEvaluations(type_);
       return laneStep<IntegratorType::kSemiImplicitEuler>(model, terms, input, h, state) ? StepStatus::kOk : StepStatus::kNonFinite;
     case IntegratorType::kRk4:
-      statistics_.rhs_evaluations += 4;
+      statistics_.rhs_evaluations += laneRhsEvaluations(type_);
       return laneStep<IntegratorType::kRk4>(model, terms, input, h, state) ? StepStatus::kOk : StepStatus::kNonFinite;
     case IntegratorType::kRkmk4: {
       Stages<4> stages;

@@ -412,6 +412,9 @@ inline bool hasLaneStep(IntegratorType type) {
          type == IntegratorType::kSemiImplicitEuler;
 }
 
+/// f evaluations in one step of a method with a lane kernel: rk4's four stages, the Eulers' one.
+constexpr std::uint64_t laneRhsEvaluations(IntegratorType type) { return type == IntegratorType::kRk4 ? 4 : 1; }
+
 /// One step of a method with a lane kernel (hasLaneStep), for the lanes as T holds them.
 template <class T>
 RIGID_BODY_LANE_INLINE LaneState<T> laneStep(IntegratorType type, const LaneBody<T>& b, const StepTerms& terms, double h,

@@ -12,11 +12,6 @@ namespace integrators {
 
 namespace {
 
-void runBatchPortable(IntegratorType type, const LaneBody<Lanes>& b, const StepTerms& terms, double h,
-                      std::int64_t steps, std::size_t count, LaneState<Lanes>& y, std::int64_t* done, bool* running) {
-  runLanes(type, b, terms, h, steps, count, y, done, running);
-}
-
 #if defined(__x86_64__) && !defined(__AVX__)
 #define RIGID_BODY_WIDE_LANES 1
 __attribute__((target("avx"))) void runBatchAvx(IntegratorType type, const LaneBody<Lanes>& b, const StepTerms& terms,
@@ -46,7 +41,7 @@ void runBatch(bool wide, IntegratorType type, const LaneBody<Lanes>& b, const St
   }
 #endif
   (void)wide;
-  runBatchPortable(type, b, terms, h, steps, count, y, done, running);
+  runLanes(type, b, terms, h, steps, count, y, done, running);  // the build's own instruction set
 }
 
 }  // namespace integrators

@@ -18,6 +18,18 @@ constexpr int kMaxTreeDepth = 64;
 // Subscriber queues: a burst beyond this between two spins drops the oldest messages (roscpp's policy).
 constexpr uint32_t kQueueSize = 10;
 
+// A wrench given in a frame F fixed in the body (at X_BF), about F's origin or `point` (in F): in body axes
+// about the centre of mass, F_B = R_BF F_F and τ_B = R_BF τ_F + p_BQ × F_B. It turns with the body and its
+// lever arm stays fixed in body axes.
+rigid_body::Wrench bodyFixedWrench(const geometry_msgs::Wrench& wrench, const Eigen::Isometry3d& X_BF,
+                                   const Eigen::Vector3d* point) {
+  const WrenchAtPoint at = wrenchAtPointInWorld(wrench, X_BF, point);  // "world" = B here
+  rigid_body::Wrench body;
+  body.force = at.wrench_W.force;
+  body.torque = at.wrench_W.torque + at.p_WQ.cross(at.wrench_W.force);
+  return body;
+}
+
 std::string withoutLeadingSlash(const std::string& frame) {
   const std::size_t first = frame.find_first_not_of('/');
   return first == std::string::npos ? std::string() : frame.substr(first);
@@ -123,9 +135,7 @@ bool WrenchInput::convert(std::size_t body, const geometry_msgs::Wrench& wrench,
     case WrenchFrame::kBody:
       if (config_.bodies[body].published_offset) {
         // The published frame is a URDF link frame P at X_BP: its axes about its origin (or the point).
-        const WrenchAtPoint at = wrenchAtPointInWorld(wrench, config_.bodies[body].X_BP, point);  // "world" = B
-        out.wrench.body.force = at.wrench_W.force;
-        out.wrench.body.torque = at.wrench_W.torque + at.p_WQ.cross(at.wrench_W.force);
+        out.wrench.body = bodyFixedWrench(wrench, config_.bodies[body].X_BP, point);
         finite = out.wrench.body.isFinite();
         break;
       }
@@ -157,12 +167,8 @@ bool WrenchInput::convert(std::size_t body, const geometry_msgs::Wrench& wrench,
       }
       if (owner && *owner == body) {
         // A frame of the body itself (a thruster or sensor link published relative to body_frame): the wrench
-        // is fixed in the body, F_B = R_BF F_F and τ_B = R_BF τ_F + p_BQ × F_B with Q the frame's origin (or
-        // the point), so it turns with the body and its lever arm stays fixed in body axes. X_BF = X_BP X_PF
-        // (X_BP the identity but for a URDF link).
-        const WrenchAtPoint at = wrenchAtPointInWorld(wrench, config_.bodies[body].X_BP * X_AF, point);  // "world" = B
-        out.wrench.body.force = at.wrench_W.force;
-        out.wrench.body.torque = at.wrench_W.torque + at.p_WQ.cross(at.wrench_W.force);
+        // is fixed in the body. X_BF = X_BP X_PF (X_BP the identity but for a URDF link).
+        out.wrench.body = bodyFixedWrench(wrench, config_.bodies[body].X_BP * X_AF, point);
         finite = out.wrench.body.isFinite();
         break;
       }
