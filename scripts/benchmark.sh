@@ -7,7 +7,7 @@ set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 install_dependencies
 build_workspace
-echo "machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'); $(g++ --version | head -1)"
+echo "machine: $(machine_description); $(g++ --version | head -1)"
 echo "mass properties from meshes:"
 "$WORKSPACE/devel/lib/rigid_body_sim/mesh_mass_properties_table"
 echo

@@ -75,6 +75,20 @@ start_private_master() {
   sleep 3
 }
 
+# The set-up of the scripts that run the node against a master of their own on port $1: what the package
+# needs installed, the workspace built and sourced, the master started.
+prepare_node_run() {
+  install_dependencies
+  build_workspace
+  source_workspace
+  start_private_master "$1"
+}
+
+# The machine a benchmark ran on, for the first line of its output: "N cores, CPU model".
+machine_description() {
+  echo "$(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p')"
+}
+
 # The load scripts' scene: a swarm of $1 bodies (scripts/make_scene.py; half take wrenches; tf and odom at
 # 100 Hz, dt 1 ms, integrator $INTEGRATOR or rk4) written to the file $2. Sets SWARM_FIRST to the name of
 # its first body (the names are zero-padded to the width of the last index).

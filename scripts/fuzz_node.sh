@@ -6,16 +6,13 @@
 # published, a stamp went back, a service call hung or the node stopped answering.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
-install_dependencies
-build_workspace
-source_workspace
-start_private_master 11511
+prepare_node_run 11511
 if [ -n "${4:-}" ]; then rosparam load "$4" /fuzz/rigid_body_node; fi
 rosrun rigid_body_sim rigid_body_node __ns:=fuzz __name:=rigid_body_node _rate:=100 >/tmp/rigid_body_sim_fuzz_node.log 2>&1 &
 NODE=$!
 STOP_PIDS="$STOP_PIDS $NODE"
 sleep 2
-echo "machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'); node: ${4:-the default scene}, rate 100 Hz"
+echo "machine: $(machine_description); node: ${4:-the default scene}, rate 100 Hz"
 status=0
 /usr/bin/python3 "$PACKAGE_DIR/scripts/fuzz_node.py" /fuzz "${1:-30}" "${2:-1}" "${3:-500}" || status=$?
 if ! kill -0 "$NODE" 2>/dev/null; then

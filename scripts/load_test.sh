@@ -4,12 +4,9 @@
 # and its timer overruns. Usage: scripts/load_test.sh [RATE_HZ=10000] [SECONDS=10]
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
-install_dependencies
-build_workspace
-source_workspace
-start_private_master 11411
+prepare_node_run 11411
 rosrun rigid_body_sim rigid_body_node __ns:=load >/dev/null 2>&1 &
 STOP_PIDS="$STOP_PIDS $!"
 sleep 2
-echo "machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'); node: default scene (rate 100 Hz, dt 1 ms)"
+echo "machine: $(machine_description); node: default scene (rate 100 Hz, dt 1 ms)"
 "$WORKSPACE/devel/lib/rigid_body_sim/wrench_load" /load "$(pgrep -f 'rigid_body_node __ns:=load' | head -1)" "${1:-10000}" "${2:-10}"

@@ -6,12 +6,9 @@
 # Usage: scripts/lockstep_speed.sh [BODIES...=1 1000] (env SECONDS_PER_RUN=10, INTEGRATOR=rk4)
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
-install_dependencies
-build_workspace
-source_workspace
-start_private_master 11413
+prepare_node_run 11413
 scene=$(mktemp --suffix=.yaml)
-echo "machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'); integrator ${INTEGRATOR:-rk4}, dt 1 ms, outputs at 100 Hz"
+echo "machine: $(machine_description); integrator ${INTEGRATOR:-rk4}, dt 1 ms, outputs at 100 Hz"
 for n in "${@:-1 1000}"; do
   write_swarm_scene "$n" "$scene"
   rosparam load "$scene" "/lockstep_$n/rigid_body_node"
