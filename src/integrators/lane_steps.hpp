@@ -10,8 +10,14 @@
 // differs from the generic driver is the arrangement:
 //   - R is formed from the stage's q without dividing by |q|² (R_u = |q|² R, since every entry is quadratic
 //     in q), and 1/|q|² is applied at the end of each product that uses R. The division then runs beside the
-//     products instead of before them: a stage is a chain q → R → Rᵀ L → I⁻¹ → R → q̇, and the division no
-//     longer sits at its head.
+//     products instead of before them.
+//   - a body with a full inertia tensor turns with its angular velocity in body axes, ω_B = I_Bcm_B⁻¹ Rᵀ L,
+//     and q̇ = ½ q ⊗ [0, ω_B], which is ½ [0, R ω_B] ⊗ q (q ⊗ v = (q v q*) ⊗ q for a pure v; q v q* = R v
+//     for a unit q, and q/|q| turns as q does): the same f, without turning ω back into world axes. A stage
+//     is then the chain q → R → Rᵀ L → I⁻¹ → q̇, one matrix product shorter; the angular damping torque
+//     −c ω = R (−c ω_B) is turned into world axes together with the input's body torque, in one product.
+//   - the input's body force and body torque are turned into world axes only if some lane has one (b.body_force,
+//     b.body_torque): a wrench sent in the world frame costs no rotation.
 //   - a stage is built straight from the previous stage's rates (Y + a h k), with no copies of whole states.
 // Semi-implicit Euler: see laneSemiImplicitEulerStep.
 #pragma once
@@ -99,6 +105,9 @@ struct LaneBody {
   Vec<T> weight;                        // M g
   T linear_damping, angular_damping;
   Vec<T> force_W, torque_W, force_B, torque_B;  // the applied wrench: world and body parts
+  // Equal in every lane of a batch: whether any lane's input has a body force (a body torque). A lane without
+  // one then adds a turned zero, which changes no bit of a finite sum but a zero's sign.
+  bool body_force = false, body_torque = false;
   // Semi-implicit Euler's free rotation: the inverse principal moments and the principal axes R_BP.
   Vec<T> inverse_principal;
   Mat<T> principal_axes;
@@ -147,29 +156,44 @@ struct LaneRotation {
   }
 };
 
-// The wrench of the assembled terms at y, with ω (world axes) if `need_w` (else ω stays zero and so does
-// the angular damping): force = u_F + M g − c v, torque = u_τ − c_ω ω. `rotation` is y's, if the caller has
-// formed it already; otherwise it is formed here when a term needs it.
+// The wrench of the assembled terms at y, and ½ω if `need_w` (else ω stays zero and so does the angular
+// damping): force = u_F + M g − c v, torque = u_τ − c_ω ω. ω is in body axes (ω_B = I⁻¹ Rᵀ L) with
+// terms.world_inertia and in world axes (ω = L/I₀) without it; half of it, as q̇ needs it (halving is exact:
+// the same bits as halving q̇). `rotation` is y's, if the caller has formed it already; otherwise it is formed
+// here when a term needs it.
 template <class T>
 RIGID_BODY_LANE_INLINE void laneWrench(const LaneBody<T>& b, const StepTerms& terms, bool need_w, const LaneState<T>& y,
                                        const Vec<T>& v, const LaneRotation<T>* rotation, Vec<T>& force,
-                                       Vec<T>& torque, Vec<T>& w) {
-  force = torque = w = Vec<T>{T{}, T{}, T{}};
-  if (terms.input || (need_w && terms.world_inertia)) {
+                                       Vec<T>& torque, Vec<T>& half_w) {
+  const Vec<T> zero{T{}, T{}, T{}};
+  force = torque = half_w = zero;
+  const bool body_w = need_w && terms.world_inertia;
+  const bool body_force = terms.input && b.body_force;
+  // The torque with a part in body axes: the input's and, with ω_B, the angular damping's.
+  const bool body_torque = (terms.input && b.body_torque) || (body_w && terms.angular_damping);
+  if (body_w || body_force || body_torque) {
     const LaneRotation<T> R = rotation != nullptr ? *rotation : LaneRotation<T>(y);
-    if (need_w && terms.world_inertia) {
-      // ω = R I⁻¹ Rᵀ L = s² R_u (I⁻¹ (R_uᵀ L))
-      w = (R.s * R.s) * (R.R * (b.inverse_inertia * R.R.transposeTimes(y.L)));
-    }
-    if (terms.input) {
-      force = b.force_W + R.s * (R.R * b.force_B);
-      torque = b.torque_W + R.s * (R.R * b.torque_B);
+    // ω_B = I⁻¹ Rᵀ L = s X with X = I⁻¹ (R_uᵀ L); s is applied last, beside the chain.
+    const Vec<T> X = body_w ? b.inverse_inertia * R.R.transposeTimes(y.L) : zero;
+    if (body_w) half_w = (0.5 * R.s) * X;
+    if (body_force) force = R.s * (R.R * b.force_B);
+    if (body_torque) {  // s R_u (u_τB − c ω_B), as R_u (s u_τB − c s² X): s and c s² beside the chain
+      Vec<T> torque_B = terms.input && b.body_torque ? R.s * b.torque_B : zero;
+      if (body_w && terms.angular_damping) torque_B = torque_B - (b.angular_damping * (R.s * R.s)) * X;
+      torque = R.R * torque_B;
     }
   }
-  if (need_w && !terms.world_inertia) w = b.j0 * y.L;
+  if (terms.input) {
+    force = force + b.force_W;
+    torque = torque + b.torque_W;
+  }
+  if (need_w && !terms.world_inertia) {
+    const Vec<T> w = b.j0 * y.L;
+    half_w = (T{} + 0.5) * w;
+    if (terms.angular_damping) torque = torque - b.angular_damping * w;
+  }
   if (terms.gravity) force = force + b.weight;
   if (terms.linear_damping) force = force - b.linear_damping * v;
-  if (need_w && terms.angular_damping) torque = torque - b.angular_damping * w;
 }
 
 /// Ẏ = f(Y, u) with the assembled terms only (uniform over the lanes).
@@ -178,30 +202,57 @@ RIGID_BODY_LANE_INLINE LaneRates<T> laneRates(const LaneBody<T>& b, const StepTe
   LaneRates<T> k;
   const Vec<T> v = b.inverse_mass * y.P;
   k.p = v;
-  Vec<T> w;
+  Vec<T> w;  // ½ω
   laneWrench(b, terms, terms.rotation, y, v, static_cast<const LaneRotation<T>*>(nullptr), k.P, k.L, w);
-  if (terms.rotation) {
-    // q̇ = ½ [0, ω] ⊗ q
-    k.qx = 0.5 * (w.x * y.qw + w.y * y.qz - w.z * y.qy);
-    k.qy = 0.5 * (w.y * y.qw + w.z * y.qx - w.x * y.qz);
-    k.qz = 0.5 * (w.z * y.qw + w.x * y.qy - w.y * y.qx);
-    k.qw = -0.5 * (w.x * y.qx + w.y * y.qy + w.z * y.qz);
+  if (terms.rotation && terms.world_inertia) {
+    // q̇ = q ⊗ [0, ½ω_B]
+    k.qx = w.x * y.qw + w.z * y.qy - w.y * y.qz;
+    k.qy = w.y * y.qw + w.x * y.qz - w.z * y.qx;
+    k.qz = w.z * y.qw + w.y * y.qx - w.x * y.qy;
+    k.qw = -(w.x * y.qx + w.y * y.qy + w.z * y.qz);
+  } else if (terms.rotation) {
+    // q̇ = [0, ½ω] ⊗ q, ω in world axes
+    k.qx = w.x * y.qw + w.y * y.qz - w.z * y.qy;
+    k.qy = w.y * y.qw + w.z * y.qx - w.x * y.qz;
+    k.qz = w.z * y.qw + w.x * y.qy - w.y * y.qx;
+    k.qw = -(w.x * y.qx + w.y * y.qy + w.z * y.qz);
   } else {
     k.qx = k.qy = k.qz = k.qw = T{};  // q and L keep their values without the rotation term
   }
   return k;
 }
 
-// q ← q/|q|
+// 1/√n for n = |q|². Near 1, |n − 1| ≤ 2⁻²⁶, by one Newton step for n^(-1/2) from 1: (3 − n)/2, whose
+// error 3ε²/8 (ε = n − 1) is under 2⁻⁵³, below the rounding of 1/√n itself; elsewhere 1/√n. The exact form's
+// square root and division are ~30 cycles on the step's critical path (each step's q is the next one's
+// start); RK4 keeps |q|² that near 1 at the usual steps (its norm error per step is ~θ⁶/72, θ = h|ω|/2).
+// One lane: a branch; four: both forms and a select per lane, the same value in each lane as alone.
+constexpr double kNearUnitNorm = 1.0 / (1 << 26);
+RIGID_BODY_LANE_INLINE double inverseNorm(double n) {
+  if (std::fabs(n - 1.0) <= kNearUnitNorm) return 1.5 - 0.5 * n;
+  return 1.0 / std::sqrt(n);
+}
+RIGID_BODY_LANE_INLINE Lanes inverseNorm(Lanes n) {
+  Lanes root = n;
+  laneSqrt(root);
+  const Lanes exact = 1.0 / root, newton = 1.5 - 0.5 * n, d = n - 1.0;
+  return (d <= kNearUnitNorm) & (d >= -kNearUnitNorm) ? newton : exact;
+}
+
+// q ← q/|q|, given n = |q|² (a caller may know it sooner than q itself).
 template <class T>
-RIGID_BODY_LANE_INLINE void normaliseQuaternion(LaneState<T>& y) {
-  T norm = y.qx * y.qx + y.qy * y.qy + y.qz * y.qz + y.qw * y.qw;
-  laneSqrt(norm);
-  const T inverse_norm = 1.0 / norm;
+RIGID_BODY_LANE_INLINE void normaliseQuaternion(LaneState<T>& y, const T& n) {
+  const T inverse_norm = inverseNorm(n);
   y.qx = y.qx * inverse_norm;
   y.qy = y.qy * inverse_norm;
   y.qz = y.qz * inverse_norm;
   y.qw = y.qw * inverse_norm;
+}
+
+// q ← q/|q|
+template <class T>
+RIGID_BODY_LANE_INLINE void normaliseQuaternion(LaneState<T>& y) {
+  normaliseQuaternion(y, y.qx * y.qx + y.qy * y.qy + y.qz * y.qz + y.qw * y.qw);
 }
 
 /// Explicit Euler: Y + h f(Y), q normalised.
@@ -218,16 +269,18 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneEulerStep(const LaneBody<T>& b, const St
 template <class T>
 RIGID_BODY_LANE_INLINE LaneState<T> laneRk4Step(const LaneBody<T>& b, const StepTerms& terms, double h, const LaneState<T>& y) {
   const bool rotation = terms.rotation;
-  const T half = T{} + 0.5 * h, whole = T{} + h, sixth = T{} + h / 6.0;
+  const T half = T{} + 0.5 * h, whole = T{} + h, sixth = T{} + h / 6.0, third = T{} + h / 3.0;
+  // Y + h/6 k1 + h/3 k2 + h/3 k3 + h/6 k4, summed left to right as each rate arrives (a rate is dead once
+  // it is added and has built the next stage: fewer values live at once), each rate scaled before the sum:
+  // rates near the largest double (a wrench of 1e308 N) then overflow no sooner than the state they move.
   const LaneRates<T> k1 = laneRates(b, terms, y);
+  LaneState<T> next = advanced(y, sixth, k1, rotation);
   const LaneRates<T> k2 = laneRates(b, terms, advanced(y, half, k1, rotation));
+  next = advanced(next, third, k2, rotation);
   const LaneRates<T> k3 = laneRates(b, terms, advanced(y, half, k2, rotation));
+  next = advanced(next, third, k3, rotation);
   const LaneRates<T> k4 = laneRates(b, terms, advanced(y, whole, k3, rotation));
-  // Y + h/6 k1 + h/3 k2 + h/3 k3 + h/6 k4, each rate scaled before the sum: rates near the largest double
-  // (a wrench of 1e308 N) then overflow no sooner than the state they move.
-  const T third = T{} + h / 3.0;
-  LaneState<T> next = advanced(advanced(advanced(advanced(y, sixth, k1, rotation), third, k2, rotation), third, k3, rotation),
-                               sixth, k4, rotation);
+  next = advanced(next, sixth, k4, rotation);
   if (rotation) normaliseQuaternion(next);  // without it q is y's, untouched
   next.t = y.t + h;
   return next;
@@ -274,6 +327,8 @@ inline void loadBody(LaneBody<T>& b, std::size_t i, IntegratorType type, const S
     setLane(b.torque_W, i, input.world.torque);
     setLane(b.force_B, i, input.body.force);
     setLane(b.torque_B, i, input.body.torque);
+    b.body_force = b.body_force || (input.body.force.array() != 0.0).any();  // exactly zero, not nearly
+    b.body_torque = b.body_torque || (input.body.torque.array() != 0.0).any();
   }
   if (type != IntegratorType::kSemiImplicitEuler || !terms.rotation || !terms.world_inertia) return;
   b.mass[i] = &model.mass;
@@ -340,12 +395,11 @@ __attribute__((noinline)) void turnByExactFlow(const LaneBody<T>& b, bool world_
 template <class T>
 RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>& b, const StepTerms& terms, double h,
                                               const LaneState<T>& y) {
-  // The kick needs ω only for angular damping; the rotation below does not use it at all. R of q_n, which the
-  // Cayley turns need, is formed once for both.
+  // The kick needs ω only for angular damping. R of q_n, which the Cayley turns need, is formed once for both.
   const bool cayley = terms.rotation && terms.world_inertia && !b.symmetric_top;
   const LaneRotation<T> R = cayley ? LaneRotation<T>(y) : LaneRotation<T>{};
   const Vec<T> v = b.inverse_mass * y.P;
-  Vec<T> force, torque, w;
+  Vec<T> force, torque, w;  // w = ½ω
   laneWrench(b, terms, terms.angular_damping, y, v, cayley ? &R : nullptr, force, torque, w);
   const T step = T{} + h;
   LaneState<T> next = y;
@@ -359,8 +413,13 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>&
     normaliseQuaternion(next);
     return next;
   }
-  // The body momentum in principal axes, m = R_BPᵀ R_WBᵀ L_{n+1}, with R of q_n.
-  const Vec<T> m = b.principal_axes.transposeTimes(R.s * R.R.transposeTimes(next.L));
+  // The body momentum in principal axes, m = R_BPᵀ R_WBᵀ L_{n+1}, with R of q_n, kicked in body axes:
+  // Rᵀ L_{n+1} = Rᵀ L_n + h (u_τB − c ω_B + Rᵀ u_τW). Equal to turning the world L_{n+1} above (to rounding),
+  // but it does not wait for it: the world torque's turn into world axes and back leaves the critical path.
+  Vec<T> torque_B = terms.input && b.body_torque ? b.torque_B : Vec<T>{T{}, T{}, T{}};
+  if (terms.angular_damping) torque_B = torque_B - (b.angular_damping + b.angular_damping) * w;  // w = ½ω_B
+  if (terms.input) torque_B = torque_B + R.s * R.R.transposeTimes(b.torque_W);
+  const Vec<T> m = b.principal_axes.transposeTimes(R.s * R.R.transposeTimes(y.L) + step * torque_B);
   // Turn a about e₀ by t₀ = a₀ m₀ (a_i = h/(2 I_i)); it turns m by the rational rotation of D₀ = 1 + t₀²,
   // so t₁ = a₁ N₁/D₀; turn b moves m₂ by the rotation of 1 + t₁², so t₂ = C/E. The three turns' product
   // (1 + t₀ i)(1 + t₁ j)(1 + t₂ k) = (1 − t₀t₁t₂, t₀ + t₁t₂, t₁ − t₀t₂, t₂ + t₀t₁) (ik = −j, jk = i, k² = −1),
@@ -383,7 +442,9 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>&
   next.qx = y.qw * r.x + rw * y.qx + (y.qy * r.z - y.qz * r.y);
   next.qy = y.qw * r.y + rw * y.qy + (y.qz * r.x - y.qx * r.z);
   next.qz = y.qw * r.z + rw * y.qz + (y.qx * r.y - y.qy * r.x);
-  normaliseQuaternion(next);
+  // |q ⊗ r|² = |q|² |r|², known before the product is.
+  const T q_norm2 = y.qx * y.qx + y.qy * y.qy + y.qz * y.qz + y.qw * y.qw;
+  normaliseQuaternion(next, q_norm2 * (rw * rw + (r_P.x * r_P.x + r_P.y * r_P.y + r_P.z * r_P.z)));
   return next;
 }
 
