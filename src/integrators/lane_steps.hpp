@@ -12,8 +12,8 @@
 //     in q), and 1/|q|² is applied at the end of each product that uses R. The division then runs beside the
 //     products instead of before them.
 //   - a body with a full inertia tensor turns with its angular velocity in body axes, ω_B = I_Bcm_B⁻¹ Rᵀ L,
-//     and q̇ = ½ q ⊗ [0, ω_B], which is ½ [0, R ω_B] ⊗ q (q ⊗ v = (q v q*) ⊗ q for a pure v; q v q* = R v
-//     for a unit q, and q/|q| turns as q does): the same f, without turning ω back into world axes. A stage
+//     and q̇ = ½ q ⊗ [0, ω_B], which is ½ [0, R ω_B] ⊗ q for any q ≠ 0 (R v = q v q*/|q|², so
+//     (R v) ⊗ q = q v (q* q)/|q|² = q ⊗ v): the same f, without turning ω back into world axes. A stage
 //     is then the chain q → R → Rᵀ L → I⁻¹ → q̇, one matrix product shorter; the angular damping torque
 //     −c ω = R (−c ω_B) is turned into world axes together with the input's body torque, in one product.
 //   - the input's body force and body torque are turned into world axes only if some lane has one (b.body_force,
