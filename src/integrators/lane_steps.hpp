@@ -440,7 +440,7 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>&
   next.qx = y.qw * r.x + rw * y.qx + (y.qy * r.z - y.qz * r.y);
   next.qy = y.qw * r.y + rw * y.qy + (y.qz * r.x - y.qx * r.z);
   next.qz = y.qw * r.z + rw * y.qz + (y.qx * r.y - y.qy * r.x);
-  // |q ⊗ r|² = |q|² |r|², known before the product is.
+  // |q ⊗ r|² = |q|² |r|² with |r|² = rw² + |r_P|² (R_BP is a rotation): known before the product is.
   const T q_norm2 = y.qx * y.qx + y.qy * y.qy + y.qz * y.qz + y.qw * y.qw;
   normaliseQuaternion(next, q_norm2 * (rw * rw + (r_P.x * r_P.x + r_P.y * r_P.y + r_P.z * r_P.z)));
   return next;
