@@ -28,7 +28,8 @@ class Markers {
   const NodeConfig& config_;
   ros::Publisher publisher_;
   int subscribers_ = 0;
-  rigid_body::Nanoseconds last_ = -1;
+  rigid_body::Nanoseconds last_ = -1;  ///< the stamp of the last array published
+  rigid_body::Nanoseconds due_ = -1;   ///< when the next one is due (on the marker grid)
   visualization_msgs::MarkerArray array_;  ///< bodies, environment, then the two contact markers
   std::size_t contact_points_ = 0;         ///< index of the contact points' marker in array_ (if any)
 };
