@@ -239,6 +239,12 @@ RIGID_BODY_LANE_INLINE Lanes inverseNorm(Lanes n) {
   return (d <= kNearUnitNorm) & (d >= -kNearUnitNorm) ? newton : exact;
 }
 
+// |q|²
+template <class T>
+RIGID_BODY_LANE_INLINE T quaternionNorm2(const LaneState<T>& y) {
+  return y.qx * y.qx + y.qy * y.qy + y.qz * y.qz + y.qw * y.qw;
+}
+
 // q ← q/|q|, given n = |q|² (a caller may know it sooner than q itself).
 template <class T>
 RIGID_BODY_LANE_INLINE void normaliseQuaternion(LaneState<T>& y, const T& n) {
@@ -252,7 +258,7 @@ RIGID_BODY_LANE_INLINE void normaliseQuaternion(LaneState<T>& y, const T& n) {
 // q ← q/|q|
 template <class T>
 RIGID_BODY_LANE_INLINE void normaliseQuaternion(LaneState<T>& y) {
-  normaliseQuaternion(y, y.qx * y.qx + y.qy * y.qy + y.qz * y.qz + y.qw * y.qw);
+  normaliseQuaternion(y, quaternionNorm2(y));
 }
 
 /// Explicit Euler: Y + h f(Y), q normalised.
@@ -441,8 +447,7 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>&
   next.qy = y.qw * r.y + rw * y.qy + (y.qz * r.x - y.qx * r.z);
   next.qz = y.qw * r.z + rw * y.qz + (y.qx * r.y - y.qy * r.x);
   // |q ⊗ r|² = |q|² |r|² with |r|² = rw² + |r_P|² (R_BP is a rotation): known before the product is.
-  const T q_norm2 = y.qx * y.qx + y.qy * y.qy + y.qz * y.qz + y.qw * y.qw;
-  normaliseQuaternion(next, q_norm2 * (rw * rw + (r_P.x * r_P.x + r_P.y * r_P.y + r_P.z * r_P.z)));
+  normaliseQuaternion(next, quaternionNorm2(y) * (rw * rw + (r_P.x * r_P.x + r_P.y * r_P.y + r_P.z * r_P.z)));
   return next;
 }
 
@@ -456,7 +461,7 @@ inline void acceptableLanes(const LaneState<T>& y, std::size_t lanes, bool* ok) 
   const T probe = (zero * y.p.x + zero * y.p.y + zero * y.p.z) + (zero * y.P.x + zero * y.P.y + zero * y.P.z) +
                   (zero * y.L.x + zero * y.L.y + zero * y.L.z) + (zero * y.qx + zero * y.qy + zero * y.qz) +
                   (zero * y.qw + zero * y.t);
-  const T norm2 = y.qx * y.qx + y.qy * y.qy + y.qz * y.qz + y.qw * y.qw;
+  const T norm2 = quaternionNorm2(y);
   constexpr double kTolerance = Integrator::kUnitQuaternionTolerance;
   constexpr double kLow = (1.0 - kTolerance) * (1.0 - kTolerance), kHigh = (1.0 + kTolerance) * (1.0 + kTolerance);
   for (std::size_t i = 0; i < lanes; ++i) {
