@@ -22,6 +22,9 @@ echo "contact (us per body and step, median of 3):"
 "$bench/contact_benchmark" --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
   --benchmark_min_time=0.2 2>/dev/null | awk '/_median/ {print "  " $1 "  " $NF}'
 echo
+echo "the core's latencies and the lone kernel without the call around it (bench/step_anatomy.cpp):"
+"$bench/step_anatomy" --benchmark_min_time=0.3 2>/dev/null | awk '/^(latency|kernel)\// {print "  " $1 "  " $NF}'
+echo
 echo "ns per step, every term against the assembled ones (median):"
 /usr/bin/python3 "$PACKAGE_DIR/scripts/benchmark_table.py" "$results/steps.json" "$results/scene.json"
 rm -rf "$results"
