@@ -1,11 +1,10 @@
 #include "rigid_body_sim/ros/markers.hpp"
 
-#include <limits>
-
 #include <tf2_eigen/tf2_eigen.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "rigid_body_sim/ros/time_conversion.hpp"
 
