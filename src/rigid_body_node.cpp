@@ -1,6 +1,7 @@
 // rigid_body_node: one simulated scene. Reads and validates ~parameters (exit 2 on an invalid one), then
 // runs the timer loop (or the lockstep loop) until shut down.
 #include <ros/ros.h>
+#include <xmlrpcpp/XmlRpcException.h>
 
 #include <exception>
 #include <memory>
@@ -30,6 +31,9 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const std::exception& error) {
     ROS_FATAL("rigid_body_node: cannot start: %s", error.what());
+    return 2;
+  } catch (const XmlRpc::XmlRpcException& error) {  // not a std::exception: a value read as the wrong type
+    ROS_FATAL("rigid_body_node: cannot start: a parameter of an unexpected type: %s", error.getMessage().c_str());
     return 2;
   }
   if (config.lockstep) {

@@ -59,7 +59,7 @@ rigid_body::ShapeType shapeType(const XmlRpcValue& params, const std::string& na
                                   rigid_body::ShapeType::kCapsule, rigid_body::ShapeType::kMesh}) {
     if (type == rigid_body::shapeTypeName(t) && (plane_allowed || t != rigid_body::ShapeType::kPlane)) return t;
   }
-  fail(name, find(params, name) ? *find(params, name) : XmlRpcValue(type), allowed);
+  failAt(params, name, XmlRpcValue(type), allowed);
 }
 
 // size for a shape type: box [x, y, z], sphere [r], cylinder and capsule [r, length].
@@ -79,7 +79,7 @@ Eigen::Vector3d readSize(const XmlRpcValue& params, const std::string& name, rig
   for (std::size_t i = 0; i < length; ++i) {
     // Within the contact world (docs/contact.md): 1e-6 … 1e6 m.
     if (!(size[i] >= 1e-6 && size[i] <= 1e6)) {
-      if (find(params, name)) fail(name, *find(params, name), allowed + ", each in [1e-6, 1e6] m");
+      if (find(params, name)) failAt(params, name, XmlRpcValue(), allowed + ", each in [1e-6, 1e6] m");
       fail(name, XmlRpcValue(size[i]), allowed + ", each in [1e-6, 1e6] m (the body's own size is outside)");
     }
     out[static_cast<int>(i)] = size[i];
@@ -98,7 +98,7 @@ rigid_body::TriangleMesh readCollisionMesh(const XmlRpcValue& params, const std:
     return rigid_body::validatedClosedMesh(
         rigid_body::transformed(rigid_body::loadMesh(resolveMeshUri(uri), max_bytes), scale), warnings);
   } catch (const rigid_body::MeshError& error) {
-    fail(prefix + "mesh", *find(params, prefix + "mesh"), error.what());
+    failAt(params, prefix + "mesh", XmlRpcValue(uri), error.what());
   }
 }
 
@@ -107,7 +107,7 @@ Eigen::Isometry3d readPose(const XmlRpcValue& params, const std::string& prefix)
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.translation() = readVector3(params, prefix + "pose/position", "[m]");
   if (!(pose.translation().norm() <= 1e6)) {
-    fail(prefix + "pose/position", *find(params, prefix + "pose/position"), "must be within 1e6 m of the origin [m]");
+    failAt(params, prefix + "pose/position", XmlRpcValue(), "must be within 1e6 m of the origin [m]");
   }
   pose.linear() = readQuaternion(params, prefix + "pose/orientation").normalized().toRotationMatrix();
   return pose;
@@ -135,21 +135,21 @@ std::vector<rigid_body::CollisionShape> readEnvironment(const XmlRpcValue& param
       shape.type = shapeType(item, "type", "", true);
       shape.name = readString(item, "name", std::string(rigid_body::shapeTypeName(shape.type)) + std::to_string(i),
                               "must be a name for the shape");
-      if (!names.insert(shape.name).second) fail("name", *find(item, "name"), "must be unique in ~environment");
+      if (!names.insert(shape.name).second) failAt(item, "name", XmlRpcValue(shape.name), "must be unique in ~environment");
       readMaterial(item, "", shape.material);
       if (shape.type == rigid_body::ShapeType::kPlane) {
         for (const char* key : {"size", "pose", "mesh", "scale"}) {
-          if (find(item, key)) fail(key, *find(item, key), "is not a key of a plane (give normal and offset)");
+          if (find(item, key)) failAt(item, key, XmlRpcValue(), "is not a key of a plane (give normal and offset)");
         }
         const std::vector<double> n = readNumbers(item, "normal", {0.0, 0.0, 1.0}, 3, "must be 3 finite numbers, not all 0");
         shape.normal = Eigen::Vector3d(n[0], n[1], n[2]);
-        if (!(shape.normal.norm() > 1e-9)) fail("normal", *find(item, "normal"), "must be 3 finite numbers, not all 0");
+        if (!(shape.normal.norm() > 1e-9)) failAt(item, "normal", XmlRpcValue(), "must be 3 finite numbers, not all 0");
         shape.normal.normalize();
         shape.offset = readNumber(item, "offset", 0.0, [](double d) { return std::abs(d) <= 1e6; },
                                   "must be a finite number in [-1e6, 1e6] [m]");
       } else {
         for (const char* key : {"normal", "offset"}) {
-          if (find(item, key)) fail(key, *find(item, key), "is a key of a plane only");
+          if (find(item, key)) failAt(item, key, XmlRpcValue(), "is a key of a plane only");
         }
         if (shape.type == rigid_body::ShapeType::kMesh) {
           shape.mesh = readCollisionMesh(item, "", max_mesh_bytes);
@@ -186,7 +186,7 @@ std::optional<rigid_body::CollisionShape> readCollision(const XmlRpcValue& param
       fail("link", XmlRpcValue(body.link), body.urdf_collision_problem);
     }
     if (!body.urdf_collision) fail("collision", *value, "needs a shape: the link has no <collision>; give collision/shape");
-    if (!own && find(params, "collision/size")) fail("collision/size", *find(params, "collision/size"), "needs collision/shape too");
+    if (!own && find(params, "collision/size")) failAt(params, "collision/size", XmlRpcValue(), "needs collision/shape too");
     shape = *body.urdf_collision;
     shape.name = body.name.empty() ? body.body_frame : body.name;
     if (!own) readMaterial(params, "collision/", shape.material);
@@ -225,11 +225,11 @@ rigid_body::ContactSettings readContactSettings(const XmlRpcValue& params) {
                                    "position_correction, event_location, continuous");
   settings.iterations = readInteger(params, "contact/iterations", settings.iterations, 1,
                                     "must be an integer in [1, 1000] (solver sweeps per step)");
-  if (settings.iterations > 1000) fail("contact/iterations", *find(params, "contact/iterations"), "must be an integer in [1, 1000]");
+  if (settings.iterations > 1000) failAt(params, "contact/iterations", XmlRpcValue(), "must be an integer in [1, 1000]");
   settings.position_iterations = readInteger(params, "contact/position_iterations", settings.position_iterations, 0,
                                              "must be an integer in [0, 1000] (projection sweeps per step)");
   if (settings.position_iterations > 1000) {
-    fail("contact/position_iterations", *find(params, "contact/position_iterations"), "must be an integer in [0, 1000]");
+    failAt(params, "contact/position_iterations", XmlRpcValue(), "must be an integer in [0, 1000]");
   }
   settings.restitution_threshold = readNumber(params, "contact/restitution_threshold", settings.restitution_threshold,
                                               [](double v) { return v >= 0.0 && v <= 1e3; },

@@ -2,10 +2,16 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
+
+#include <dynamic_reconfigure/Config.h>
 
 namespace rigid_body_ros {
 
 namespace {
+
+// Seconds between two warnings about refused values (a flood of requests warns once per period).
+constexpr double kRefusedWarningPeriod = 2.0;
 
 // dynamic_reconfigure has no "unset": a limit of 0 means no limit, as an unset ~max_force does.
 double limitFrom(double value) { return value > 0.0 ? value : std::numeric_limits<double>::infinity(); }
@@ -44,7 +50,29 @@ LiveParameters::LiveParameters(const ros::NodeHandle& private_nh, NodeConfig& co
   server_->setCallback([this](rigid_body_sim::RigidBodyConfig& requested, uint32_t level) { onChange(requested, level); });
 }
 
+void LiveParameters::keepFiniteValues(rigid_body_sim::RigidBodyConfig& requested) {
+  // The server clamps each value into the .cfg's range, but a NaN fails both of its comparisons and passes.
+  // Every double of the config is checked by its message form, so that a parameter added later is too.
+  dynamic_reconfigure::Config asked, kept;
+  requested.__toMessage__(asked);
+  current_.__toMessage__(kept);
+  std::string refused;
+  for (dynamic_reconfigure::DoubleParameter& value : asked.doubles) {
+    if (std::isfinite(value.value)) continue;
+    for (const dynamic_reconfigure::DoubleParameter& in_force : kept.doubles) {
+      if (in_force.name == value.name) value.value = in_force.value;
+    }
+    refused += (refused.empty() ? "" : ", ") + value.name;
+  }
+  if (refused.empty()) return;
+  requested.__fromMessage__(asked);
+  ++refused_;
+  ROS_WARN_THROTTLE(kRefusedWarningPeriod, "rigid_body_node: live parameters: non-finite %s refused, the values in force kept (%llu refused so far)",
+                    refused.c_str(), static_cast<unsigned long long>(refused_));
+}
+
 void LiveParameters::onChange(rigid_body_sim::RigidBodyConfig& requested, uint32_t) {
+  keepFiniteValues(requested);  // what the server then writes back to the parameter server, too
   const rigid_body::Nanoseconds arrival = now_();
   // Forces: applied to every body when one of them changed (gravity is the scene's; damping is set for all).
   const bool damping = requested.linear_damping != current_.linear_damping ||

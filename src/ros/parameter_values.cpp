@@ -66,6 +66,12 @@ void fail(const std::string& name, const XmlRpcValue& value, const std::string& 
   throw ParameterError("parameter ~" + name + " = " + render(value) + ": " + allowed);
 }
 
+void failAt(const XmlRpcValue& params, const std::string& name, const XmlRpcValue& effective,
+            const std::string& allowed) {
+  if (const XmlRpcValue* value = find(params, name)) fail(name, *value, allowed);
+  throw ParameterError("parameter ~" + name + " (not set, so " + render(effective) + "): " + allowed);
+}
+
 bool isNumber(const XmlRpcValue& value) {
   return value.getType() == XmlRpcValue::TypeInt || value.getType() == XmlRpcValue::TypeDouble;
 }
@@ -130,8 +136,8 @@ Eigen::Quaterniond readQuaternion(const XmlRpcValue& params, const std::string& 
                                             "must be a unit quaternion [x, y, z, w] of 4 finite numbers");
   const Eigen::Quaterniond orientation(q[3], q[0], q[1], q[2]);
   if (std::abs(orientation.norm() - 1.0) > kQuaternionNormTolerance) {
-    fail(name, *find(params, name),
-         "must be a unit quaternion [x, y, z, w]: |q| must be within 1e-3 of 1 (it is then normalised)");
+    failAt(params, name, XmlRpcValue(),
+           "must be a unit quaternion [x, y, z, w]: |q| must be within 1e-3 of 1 (it is then normalised)");
   }
   return orientation;
 }
@@ -148,7 +154,7 @@ std::string readFrame(const XmlRpcValue& params, const std::string& name, const 
   const std::string allowed = "must be a non-empty tf2 frame id without a leading '/'";
   const std::string frame = readString(params, name, fallback, allowed);
   if (frame.empty() || frame.front() == '/' || frame.find(' ') != std::string::npos) {
-    fail(name, *find(params, name), allowed);
+    failAt(params, name, XmlRpcValue(frame), allowed);
   }
   return frame;
 }

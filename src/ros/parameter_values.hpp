@@ -22,6 +22,12 @@ using XmlRpc::XmlRpcValue;
 std::string render(const XmlRpcValue& value);
 /// Throws ParameterError("parameter ~NAME = VALUE: ALLOWED").
 [[noreturn]] void fail(const std::string& name, const XmlRpcValue& value, const std::string& allowed);
+/// fail() for the value NAME has: the one set in `params`, or, when it is not set, `effective`, the value the
+/// node would take instead ("parameter ~NAME (not set, so VALUE): ALLOWED"). A check may refuse a
+/// default, when the default comes from another parameter (a body_frame from a URDF link's name, an
+/// environment shape's name from its type and index), so no failure reads the set value without this.
+[[noreturn]] void failAt(const XmlRpcValue& params, const std::string& name, const XmlRpcValue& effective,
+                         const std::string& allowed);
 bool isNumber(const XmlRpcValue& value);
 double asNumber(const XmlRpcValue& value);
 /// Looks up a/b/c in nested structs; nullptr when it is not set.

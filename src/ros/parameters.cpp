@@ -73,8 +73,9 @@ std::size_t readMaxMeshBytes(const XmlRpcValue& params) {
 // shape: mesh. The body frame is the mesh's centre of mass, with the mesh's axes or its principal axes.
 rigid_body::MassProperties readMeshMassProperties(const XmlRpcValue& params, BodyConfig& config) {
   const std::string uri = readString(params, "mesh", "", "must be a mesh file path or package:// URI (.stl, .obj)");
-  if (uri.empty()) fail("mesh", find(params, "mesh") ? *find(params, "mesh") : XmlRpcValue(std::string()),
-                        "must be set for shape mesh: a file path or package:// URI (.stl, .obj)");
+  if (uri.empty()) {
+    failAt(params, "mesh", XmlRpcValue(uri), "must be set for shape mesh: a file path or package:// URI (.stl, .obj)");
+  }
   config.mesh_path = resolveMeshUri(uri);
   config.mesh_uri = uri;
   rigid_body::MeshMassOptions options;
@@ -82,7 +83,7 @@ rigid_body::MassProperties readMeshMassProperties(const XmlRpcValue& params, Bod
                                   "must be a finite number > 0 (mesh units to metres)");
   config.mesh_scale = scale;
   const bool has_mass = find(params, "mass") != nullptr, has_density = find(params, "density") != nullptr;
-  if (has_mass && has_density) fail("density", *find(params, "density"), "give ~mass or ~density, not both");
+  if (has_mass && has_density) failAt(params, "density", XmlRpcValue(), "give ~mass or ~density, not both");
   if (!has_mass && !has_density) {
     fail("mass", XmlRpcValue(std::string()), "for shape mesh, give ~mass [kg] or ~density [kg/m^3]");
   }
@@ -94,13 +95,13 @@ rigid_body::MassProperties readMeshMassProperties(const XmlRpcValue& params, Bod
   try {
     options.method = rigid_body::inertiaMethodFromName(method);
   } catch (const std::invalid_argument&) {
-    fail("inertia_method", *find(params, "inertia_method"), method_allowed);
+    failAt(params, "inertia_method", XmlRpcValue(method), method_allowed);
   }
   options.samples = static_cast<std::uint64_t>(
       readInteger(params, "samples", static_cast<int>(options.samples), 1,
                   "must be an integer in [1, 10000000] (points drawn for inertia_method sampling)"));
   if (options.samples > kMaxSamples) {
-    fail("samples", *find(params, "samples"), "must be an integer in [1, 10000000] (points drawn for inertia_method sampling)");
+    failAt(params, "samples", XmlRpcValue(), "must be an integer in [1, 10000000] (points drawn for inertia_method sampling)");
   }
   const std::size_t max_bytes = readMaxMeshBytes(params);
   const bool principal_axes = readBool(params, "principal_axes", false);
@@ -113,9 +114,9 @@ rigid_body::MassProperties readMeshMassProperties(const XmlRpcValue& params, Bod
     config.size.clear();
     return body.mass;
   } catch (const rigid_body::MeshError& error) {
-    fail("mesh", *find(params, "mesh"), error.what());
+    failAt(params, "mesh", XmlRpcValue(uri), error.what());
   } catch (const rigid_body::InvalidMassProperties& error) {
-    fail("mesh", *find(params, "mesh"), std::string("gives no physical inertia: ") + error.what());
+    failAt(params, "mesh", XmlRpcValue(uri), std::string("gives no physical inertia: ") + error.what());
   }
 }
 
@@ -125,10 +126,10 @@ rigid_body::MassProperties readUrdfMassProperties(const XmlRpcValue& params, Bod
                                                   const ParameterReader& reader) {
   for (const char* key : {"shape", "size", "mass", "inertia", "mesh", "scale", "density", "inertia_method", "samples",
                           "principal_axes", "mesh_frame"}) {
-    if (find(params, key)) fail(key, *find(params, key), "is not a key of a body given by ~urdf or ~robot_description");
+    if (find(params, key)) failAt(params, key, XmlRpcValue(), "is not a key of a body given by ~urdf or ~robot_description");
   }
   if (find(params, "urdf") && find(params, "robot_description")) {
-    fail("robot_description", *find(params, "robot_description"), "give ~urdf or ~robot_description, not both");
+    failAt(params, "robot_description", XmlRpcValue(), "give ~urdf or ~robot_description, not both");
   }
   config.link = readString(params, "link", "", "must be the name of a link of the robot description");
   if (config.link.empty()) fail("link", XmlRpcValue(std::string()), "must be set with ~urdf or ~robot_description");
@@ -139,7 +140,7 @@ rigid_body::MassProperties readUrdfMassProperties(const XmlRpcValue& params, Bod
   } else {
     const std::string name = readString(params, "robot_description", "", "must name the parameter that holds the URDF");
     if (name.empty() || !reader || !reader(name, xml)) {
-      fail("robot_description", *find(params, "robot_description"), "must name a parameter that holds the URDF as text");
+      failAt(params, "robot_description", XmlRpcValue(), "must name a parameter that holds the URDF as text");
     }
   }
   UrdfLink link = readUrdfLink(xml, config.link, max_bytes);
@@ -180,7 +181,7 @@ rigid_body::MassProperties readMassProperties(const XmlRpcValue& params, BodyCon
     try {
       return rigid_body::MassProperties::fromInertia(mass, I);
     } catch (const rigid_body::InvalidMassProperties& error) {
-      fail("inertia", *find(params, "inertia"),
+      failAt(params, "inertia", XmlRpcValue(),
            std::string(error.what()) + " (a symmetric positive-definite tensor about the centre of mass)");
     }
   }
@@ -196,15 +197,15 @@ rigid_body::MassProperties readMassProperties(const XmlRpcValue& params, BodyCon
     length = 2, size_allowed = "for a cylinder, must be [radius, length] with finite numbers > 0 [m]",
     fallback = {0.1, 0.4};
   } else {
-    fail("shape", *find(params, "shape"), shape_allowed);
+    failAt(params, "shape", XmlRpcValue(), shape_allowed);
   }
   config.size = readNumbers(params, "size", fallback, length, size_allowed);
   for (double s : config.size) {
-    if (!(s > 0.0)) fail("size", *find(params, "size"), size_allowed);
+    if (!(s > 0.0)) failAt(params, "size", XmlRpcValue(), size_allowed);
   }
   // The keys of shape mesh mean nothing here: a typo or a forgotten shape, not something to ignore.
   for (const char* key : {"mesh", "scale", "density", "inertia_method", "samples", "principal_axes", "max_mesh_bytes"}) {
-    if (find(params, key)) fail(key, *find(params, key), "is only for shape mesh");
+    if (find(params, key)) failAt(params, key, XmlRpcValue(), "is only for shape mesh");
   }
   // Mass and size together may give an inertia that overflows, underflows or cannot be inverted.
   try {
@@ -232,8 +233,7 @@ BodyConfig parseBody(const XmlRpcValue& params, const NodeConfig& scene, const s
   const std::string link = urdf ? readString(params, "link", "", "must be the name of a link of the robot description") : "";
   body.body_frame = readFrame(params, "body_frame", urdf && !link.empty() ? link : default_frame);
   if (scene.world_frame == body.body_frame) {
-    const XmlRpcValue* body_frame = find(params, "body_frame");
-    fail("body_frame", body_frame ? *body_frame : XmlRpcValue(body.body_frame), "must differ from ~world_frame");
+    failAt(params, "body_frame", XmlRpcValue(body.body_frame), "must differ from ~world_frame");
   }
   body.model.mass = readMassProperties(params, body, reader);
   body.model.forces.gravity_W = scene.gravity_W;
@@ -264,7 +264,7 @@ BodyConfig parseBody(const XmlRpcValue& params, const NodeConfig& scene, const s
   }
   body.mesh_frame = readString(params, "mesh_frame", "", "must be a tf2 frame id");
   if (!body.mesh_frame.empty()) {
-    if (body.shape != "mesh") fail("mesh_frame", *find(params, "mesh_frame"), "is only for shape mesh");
+    if (body.shape != "mesh") failAt(params, "mesh_frame", XmlRpcValue(body.mesh_frame), "is only for shape mesh");
     body.mesh_frame = readFrame(params, "mesh_frame", "");
   }
   if (const XmlRpcValue* initial = find(params, "initial")) collectUnknown(*initial, "initial/", kInitialNames, unknown);
@@ -295,7 +295,7 @@ std::vector<BodyConfig> parseBodies(const XmlRpcValue& params, const NodeConfig&
   const XmlRpcValue* list = find(params, "bodies");
   if (!list) {
     std::vector<BodyConfig> bodies = {parseBody(params, scene, "base_link", unknown, reader)};
-    if (find(params, "name")) fail("name", *find(params, "name"), "is a key of the items of ~bodies only");
+    if (find(params, "name")) failAt(params, "name", XmlRpcValue(), "is a key of the items of ~bodies only");
     return bodies;
   }
   const std::string allowed = "must be a non-empty list of bodies, each a struct with at least 'name'";
@@ -318,8 +318,8 @@ std::vector<BodyConfig> parseBodies(const XmlRpcValue& params, const NodeConfig&
     try {
       const std::string name = readString(item, "name", "", "must be the body's name (letters, digits, '_')");
       if (!isBodyName(name) || !names.insert(name).second) {
-        fail("name", find(item, "name") ? *find(item, "name") : XmlRpcValue(name),
-             "must be a unique name of letters, digits and '_' that starts with a letter");
+        failAt(item, "name", XmlRpcValue(name),
+               "must be a unique name of letters, digits and '_' that starts with a letter");
       }
       BodyConfig body = parseBody(item, scene, name, unknown, reader);
       body.name = name;
@@ -342,20 +342,20 @@ std::vector<BodyConfig> parseBodies(const XmlRpcValue& params, const NodeConfig&
 void readTiming(const XmlRpcValue& params, NodeConfig& config) {
   config.rate = readNumber(params, "rate", config.rate, [](double r) { return r > 0.0 && r <= kMaxRate; },
                            "must be a finite number in (0, 10000] [Hz]");
-  if (config.rate < kMinRate) fail("rate", *find(params, "rate"), "must be >= 0.001 [Hz] (a timer period of at most 1000 s)");
+  if (config.rate < kMinRate) failAt(params, "rate", XmlRpcValue(), "must be >= 0.001 [Hz] (a timer period of at most 1000 s)");
   const double max_dt = 1.0 / config.rate;
   std::ostringstream dt_allowed;
   dt_allowed << "must be a finite number in (0, 1/rate = " << max_dt << "] [s]";
   config.dt = readNumber(params, "dt", config.dt, [max_dt](double dt) { return dt > 0.0 && dt <= max_dt * (1 + 1e-12); },
                          dt_allowed.str());
   // The clock counts nanoseconds and a tick must stay a bounded amount of work: no step below a microsecond.
-  if (config.dt < kMinDt) fail("dt", *find(params, "dt"), "must be >= 1e-6 [s] (at most a million steps per second)");
+  if (config.dt < kMinDt) failAt(params, "dt", XmlRpcValue(), "must be >= 1e-6 [s] (at most a million steps per second)");
   const std::string integrator_allowed = "must be one of: " + rigid_body::integratorNameList();
   const std::string integrator = readString(params, "integrator", "rk4", integrator_allowed);
   try {
     config.integrator = rigid_body::integratorFromName(integrator);
   } catch (const std::invalid_argument&) {
-    fail("integrator", *find(params, "integrator"), integrator_allowed);
+    failAt(params, "integrator", XmlRpcValue(), integrator_allowed);
   }
   // dopri5's error control; read for every integrator so a typo is caught whichever is chosen.
   const auto tolerance = [](double t) { return t >= 1e-15 && t <= 1.0; };
@@ -390,7 +390,7 @@ void readLimits(const XmlRpcValue& params, NodeConfig& config) {
       readInteger(params, "max_body_steps_per_request", static_cast<int>(config.max_body_steps_per_request), 1,
                   "must be an integer >= 1 (steps x bodies one step request may ask for)");
   config.threads = static_cast<std::size_t>(readInteger(params, "threads", 0, 0, kThreadsAllowed));
-  if (config.threads > kMaxThreads) fail("threads", *find(params, "threads"), kThreadsAllowed);
+  if (config.threads > kMaxThreads) failAt(params, "threads", XmlRpcValue(), kThreadsAllowed);
 }
 
 // The outputs and the simulation control.
@@ -417,7 +417,7 @@ NoiseConfig readNoise(const XmlRpcValue& params) {
   NoiseConfig noise;
   const auto readStddev = [&](const std::string& name, const std::string& unit) {
     const Eigen::Vector3d v = readVector3(params, "noise/" + name, unit);
-    if ((v.array() < 0.0).any()) fail("noise/" + name, *find(params, "noise/" + name), "must be 3 numbers >= 0 " + unit);
+    if ((v.array() < 0.0).any()) failAt(params, "noise/" + name, XmlRpcValue(), "must be 3 numbers >= 0 " + unit);
     return v;
   };
   noise.position_stddev = readStddev("position_stddev", "[m]");

@@ -100,6 +100,9 @@ INSTANTIATE_TEST_SUITE_P(
                            "parameter ~link = 'elbow': names no link of the robot description"},
                       Case{"urdf_no_inertial", "_urdf:=" TEST_URDF_DIR "/offset_link.urdf _link:=sensor",
                            "parameter ~link = 'sensor': has no <inertial>"},
+                      // A default taken from another parameter and refused: the body frame from a link named "/arm".
+                      Case{"urdf_link_not_a_frame", "_urdf:=" TEST_URDF_DIR "/offset_link.urdf _link:=/arm",
+                           "parameter ~body_frame (not set, so '/arm'): must be a non-empty tf2 frame id"},
                       Case{"samples_huge", "_shape:=mesh _mass:=1.0 _mesh:=" TEST_MESH_DIR "/box.obj _inertia_method:=sampling _samples:=2147483647",
                            "parameter ~samples = 2147483647: must be an integer in [1, 10000000]"}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });

@@ -5,6 +5,11 @@
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
 #include "rigid_body_sim/ros/parameters.hpp"
 #include "test_helpers.hpp"
 
@@ -68,6 +73,43 @@ TEST(LiveParameters, AnOutOfRangeValueIsClampedByTheServerNotApplied) {
   ASSERT_TRUE(setDouble("linear_damping", -5.0));
   double value = -1.0;
   EXPECT_TRUE(waitUntil([&] { return ros::param::get("live/node/live/linear_damping", value) && value == 0.0; }));
+}
+
+TEST(LiveParameters, ANonFiniteValueIsRefusedAndTheValuesInForceKept) {
+  // The server's range clamp lets a NaN through (it fails both comparisons); the node keeps the value in force
+  // for every double of the request and goes on publishing finite odometry, noisy copy included.
+  ros::NodeHandle nh;
+  Recorder<nav_msgs::Odometry> truth(nh, "noisy/odom"), noisy(nh, "noisy/odom_noisy");
+  ASSERT_TRUE(noisy.waitForCount(3));
+  const std::vector<std::string> names = {"linear_damping", "gravity_z", "wrench_timeout", "max_force", "real_time_factor",
+                                          "noise_position_stddev", "noise_angular_velocity_stddev", "marker_rate"};
+  std::vector<double> before;
+  dynamic_reconfigure::Reconfigure request;
+  for (const std::string& name : names) {
+    double value = 0.0;
+    ASSERT_TRUE(ros::param::get("noisy/node/live/" + name, value)) << name;
+    before.push_back(value);
+    dynamic_reconfigure::DoubleParameter parameter;
+    parameter.name = name;
+    parameter.value = std::numeric_limits<double>::quiet_NaN();
+    request.request.config.doubles.push_back(parameter);
+  }
+  ASSERT_TRUE(ros::service::call("noisy/node/live/set_parameters", request));
+  for (const dynamic_reconfigure::DoubleParameter& reply : request.response.config.doubles) {
+    EXPECT_TRUE(std::isfinite(reply.value)) << reply.name << " came back as " << reply.value;
+  }
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    double value = std::numeric_limits<double>::quiet_NaN();
+    ASSERT_TRUE(ros::param::get("noisy/node/live/" + names[i], value)) << names[i];
+    EXPECT_EQ(value, before[i]) << names[i];
+  }
+  const std::size_t n = noisy.messages.size(), m = truth.messages.size();
+  ASSERT_TRUE(noisy.waitForCount(n + 5));
+  ASSERT_TRUE(truth.waitForCount(m + 5));
+  for (std::size_t i = n; i < noisy.messages.size(); ++i) {
+    EXPECT_TRUE(position(noisy.messages[i]).allFinite() && worldVelocity(noisy.messages[i]).allFinite()) << i;
+  }
+  for (std::size_t i = m; i < truth.messages.size(); ++i) EXPECT_TRUE(position(truth.messages[i]).allFinite()) << i;
 }
 
 TEST(LiveParameters, NoiseSetToZeroMakesTheNoisyOdometryTheTruth) {

@@ -165,6 +165,45 @@ TEST(Parameters, InvalidInitialStateIsRefused) {
   EXPECT_NE(errorOf(velocity).find("~initial/linear_velocity"), std::string::npos) << errorOf(velocity);
 }
 
+// A default that comes from another parameter can be refused too; the message then names the parameter and
+// the value it would have taken (reading the unset value for the message once crashed the node).
+TEST(Parameters, RefusedDefaultsNameTheParameterAndTheValueTheyWouldTake) {
+  for (const std::string link : {"a b", "/base", ""}) {
+    XmlRpcValue params;  // body_frame defaults to the URDF link's name, read before the URDF itself
+    params["urdf"] = std::string("/nonexistent/robot.urdf");
+    params["link"] = link;
+    const std::string message = errorOf(params);
+    if (link.empty()) {
+      EXPECT_NE(message.find("parameter ~link"), std::string::npos) << message;
+    } else {
+      EXPECT_NE(message.find("parameter ~body_frame (not set, so '" + link + "'): must be a non-empty tf2 frame id"),
+                std::string::npos)
+          << message;
+    }
+  }
+  XmlRpcValue same_frame;  // the default body frame base_link as the world frame
+  same_frame["world_frame"] = std::string("base_link");
+  EXPECT_NE(errorOf(same_frame).find("parameter ~body_frame (not set, so 'base_link'): must differ from ~world_frame"),
+            std::string::npos)
+      << errorOf(same_frame);
+  XmlRpcValue ground, box;  // an environment shape's default name is its type and index: plane1 here
+  ground["type"] = std::string("plane");
+  box["type"] = std::string("box");
+  box["name"] = std::string("plane1");
+  box["size"] = list({1.0, 1.0, 1.0});
+  XmlRpcValue names;
+  names["environment"][0] = box;
+  names["environment"][1] = ground;
+  EXPECT_NE(errorOf(names).find("parameter ~environment[1]/name (not set, so 'plane1'): must be unique"),
+            std::string::npos)
+      << errorOf(names);
+  XmlRpcValue unnamed;  // an item of ~bodies without a name
+  unnamed["bodies"][0]["mass"] = 1.0;
+  EXPECT_NE(errorOf(unnamed).find("parameter ~bodies[0]/name (not set, so ''): must be a unique name"),
+            std::string::npos)
+      << errorOf(unnamed);
+}
+
 TEST(Parameters, ListsWrittenAsTextAreRead) {
   // What roscpp makes of `rosrun ... _size:="[0.5, 0.25, 2]"`: a string.
   XmlRpcValue params;

@@ -13,6 +13,7 @@
 #include <ros/ros.h>
 
 #include <boost/thread/recursive_mutex.hpp>
+#include <cstdint>
 #include <functional>
 #include <memory>
 
@@ -34,12 +35,15 @@ class LiveParameters {
 
  private:
   void onChange(rigid_body_sim::RigidBodyConfig& requested, uint32_t level);
+  // A non-finite value in a request (NaN: the server's range clamp lets it through) becomes the value in force.
+  void keepFiniteValues(rigid_body_sim::RigidBodyConfig& requested);
 
   NodeConfig& config_;
   rigid_body::World& world_;
   Outputs& outputs_;
   std::function<rigid_body::Nanoseconds()> now_;
   rigid_body_sim::RigidBodyConfig current_;
+  std::uint64_t refused_ = 0;  // requests with a non-finite value
   boost::recursive_mutex mutex_;  // the server's: given to it so that our updateConfig takes it too
   std::unique_ptr<dynamic_reconfigure::Server<rigid_body_sim::RigidBodyConfig>> server_;
 };
