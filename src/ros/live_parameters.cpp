@@ -67,7 +67,9 @@ void LiveParameters::keepFiniteValues(rigid_body_sim::RigidBodyConfig& requested
   if (refused.empty()) return;
   requested.__fromMessage__(asked);
   ++refused_;
-  ROS_WARN_THROTTLE(kRefusedWarningPeriod, "rigid_body_node: live parameters: non-finite %s refused, the values in force kept (%llu refused so far)",
+  ROS_WARN_THROTTLE(kRefusedWarningPeriod,
+                    "rigid_body_node: live parameters: non-finite %s refused, the values in force kept (%llu "
+                    "requests refused so far)",
                     refused.c_str(), static_cast<unsigned long long>(refused_));
 }
 

@@ -182,7 +182,7 @@ rigid_body::MassProperties readMassProperties(const XmlRpcValue& params, BodyCon
       return rigid_body::MassProperties::fromInertia(mass, I);
     } catch (const rigid_body::InvalidMassProperties& error) {
       failAt(params, "inertia", XmlRpcValue(),
-           std::string(error.what()) + " (a symmetric positive-definite tensor about the centre of mass)");
+             std::string(error.what()) + " (a symmetric positive-definite tensor about the centre of mass)");
     }
   }
   config.shape = readString(params, "shape", "box", shape_allowed);
