@@ -1,7 +1,8 @@
 // Seeded fuzzing of the start-up parameters (scripts/fuzz_inputs.sh; not a test of the suite): random private
 // namespaces of the node's own keys and sections, values of every XmlRpc type from the everyday to NaN,
-// 2^31 − 1 and odd strings, nested up to four deep. Each is parsed as the node parses its namespace; what
-// parses becomes a World that runs 20 updates. Must not happen (exit 1): an exception other than
+// 2^31 − 1 and odd strings, nested up to four deep; a third of them take their body from a robot description
+// (~robot_description), the test URDFs damaged (tokens such as nan, 1e308, -1, "<link", cut short). Each is
+// parsed as the node parses its namespace; what parses becomes a World that runs 20 updates. Must not happen (exit 1): an exception other than
 // ParameterError out of parseConfig, any exception out of a World built from an accepted configuration, a
 // non-finite state. A crash is a finding too (run it under AddressSanitizer, as the script does).
 //
@@ -9,10 +10,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <limits>
+#include <sstream>
 #include <random>
 #include <string>
 #include <vector>
+
+#include <console_bridge/console.h>
 
 #include "rigid_body_sim/ros/parameters.hpp"
 #include "rigid_body_sim/ros/simulator_node.hpp"
@@ -40,9 +45,50 @@ const std::vector<std::string> kStrings = {
     "package://nope/x.stl", "/nonexistent/x.obj", "/dev/zero", TEST_MESH_DIR "/box.obj",
     TEST_MESH_DIR "/l_bracket.obj", TEST_MESH_DIR "/open_box.obj", TEST_MESH_DIR};
 
+const std::vector<std::string> kUrdfs = {TEST_URDF_DIR "/offset_link.urdf", TEST_URDF_DIR "/bad_links.urdf"};
+const std::vector<std::string> kLinks = {"base_link", "sensor", "impossible", "", "nope"};
+const std::vector<std::string> kUrdfTokens = {"nan", "inf", "-1", "0", "1e308", "-1e308", "1e-320", " ", "\"",
+                                              "<", ">", "/>", "<link name=\"x\"/>", "<inertial>", "</inertial>",
+                                              "<mesh filename=\"/dev/zero\"/>", "e", "-"};
+
+std::string slurp(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
 class Fuzzer {
  public:
   explicit Fuzzer(std::uint64_t seed) : rng_(seed) {}
+
+  /// A robot description: a test URDF with a few damages (tokens inserted, bytes removed, cut short).
+  std::string urdf() {
+    std::string xml = slurp(kUrdfs[pick(kUrdfs.size())]);
+    const int edits = pick(6);
+    for (int e = 0; e < edits && !xml.empty(); ++e) {
+      const std::size_t at = rng_() % xml.size();
+      switch (pick(3)) {
+        case 0:
+          xml.insert(at, kUrdfTokens[pick(kUrdfTokens.size())]);
+          break;
+        case 1:
+          xml.erase(at, 1 + pick(8));
+          break;
+        default:
+          if (pick(4) == 0) xml.resize(at);
+      }
+    }
+    return xml;
+  }
+
+  /// Whether this set names a robot description, and its link.
+  bool robotDescription(XmlRpcValue& params) {
+    if (pick(3) != 0) return false;
+    params["robot_description"] = std::string("robot_description");
+    params["link"] = kLinks[pick(kLinks.size())];
+    return true;
+  }
 
   XmlRpcValue parameters() {
     XmlRpcValue params;
@@ -122,19 +168,27 @@ int main(int argc, char** argv) {
     return 2;
   }
   const long iterations = std::atol(argv[1]);
+  // urdfdom says what it makes of each damaged description (through console_bridge): not the findings.
+  console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
   Fuzzer fuzzer(std::strtoull(argv[2], nullptr, 10));
   long accepted = 0, refused = 0, findings = 0;
   for (long i = 0; i < iterations; ++i) {
-    const XmlRpcValue params = fuzzer.parameters();
+    XmlRpcValue params = fuzzer.parameters();
+    const std::string xml = fuzzer.robotDescription(params) ? fuzzer.urdf() : std::string();
+    const rigid_body_ros::ParameterReader reader = [&xml](const std::string& name, std::string& value) {
+      if (name != "robot_description" || xml.empty()) return false;
+      value = xml;
+      return true;
+    };
     NodeConfig config;
     try {
-      config = rigid_body_ros::parseConfig(params);
+      config = rigid_body_ros::parseConfig(params, reader);
     } catch (const rigid_body_ros::ParameterError&) {
       ++refused;
       continue;
     } catch (const std::exception& error) {
       ++findings;
-      std::printf("FINDING: parseConfig threw a non-ParameterError: %s\n  %s\n", error.what(), XmlRpcValue(params).toXml().c_str());
+      std::printf("FINDING: parseConfig threw a non-ParameterError: %s\n  %s\n", error.what(), params.toXml().c_str());
       continue;
     }
     ++accepted;
@@ -148,12 +202,12 @@ int main(int argc, char** argv) {
       for (std::size_t b = 0; b < bodies.size(); ++b) {
         if (!finiteState(world.scene().state(b))) {
           ++findings;
-          std::printf("FINDING: non-finite state of body %zu\n  %s\n", b, XmlRpcValue(params).toXml().c_str());
+          std::printf("FINDING: non-finite state of body %zu\n  %s\n", b, params.toXml().c_str());
         }
       }
     } catch (const std::exception& error) {
       ++findings;
-      std::printf("FINDING: an accepted configuration's World threw: %s\n  %s\n", error.what(), XmlRpcValue(params).toXml().c_str());
+      std::printf("FINDING: an accepted configuration's World threw: %s\n  %s\n", error.what(), params.toXml().c_str());
     }
   }
   std::printf("fuzz_parameters: %ld sets, %ld accepted and run, %ld refused, %ld findings\n", iterations, accepted,
