@@ -1,8 +1,11 @@
 #include "rigid_body_sim/world.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
+
+#include "rigid_body_sim/number_format.hpp"
 
 namespace rigid_body {
 
@@ -55,6 +58,7 @@ World::World(const std::vector<BodyDefinition>& bodies, IntegratorType integrato
   if (settings.max_substeps < 1 || settings.max_body_steps_per_update < 1 || settings.max_body_steps_per_request < 1) {
     throw std::invalid_argument("the step caps must be >= 1");
   }
+  if (!(settings.max_request_seconds > 0.0)) throw std::invalid_argument("max_request_seconds must be > 0 [s]");
   if (!(settings.wrench_timeout >= 0.0) || !std::isfinite(settings.wrench_timeout)) {
     throw std::invalid_argument("wrench_timeout must be a finite number >= 0 [s]");
   }
@@ -436,18 +440,36 @@ CommandReply World::step(std::int64_t steps, Nanoseconds now) {
                        std::to_string(settings_.max_body_steps_per_request) +
                        " body-steps); call step again for more"};
   }
-  if (!settings_.owns_clock) {
-    scene_.step(steps);  // the clock is someone else's: it stays where it is
-    return {true, ""};
-  }
-  if (steps > last_step_ - clock_) {
+  if (settings_.owns_clock && steps > last_step_ - clock_) {
     end_of_time_ = true;
     return {false, "refused: the clock would pass the last representable time"};
   }
-  std::int64_t unlimited = kForever;
-  UpdateResult result;
-  advanceClockTo(clock_ + steps, unlimited, true, result);
+  // In chunks, the wall clock read between them: a request stops at its time budget, where it got to.
+  const std::int64_t chunk = std::max<std::int64_t>(1, kRequestChunkBodySteps / running);
+  const Nanoseconds budget = toNanoseconds(settings_.max_request_seconds), begin = wallClock();
+  for (std::int64_t done = 0; done < steps;) {
+    const std::int64_t n = std::min(chunk, steps - done);
+    if (settings_.owns_clock) {
+      std::int64_t unlimited = kForever;
+      UpdateResult result;
+      advanceClockTo(clock_ + n, unlimited, true, result);
+    } else {
+      scene_.step(n);  // the clock is someone else's: it stays where it is
+    }
+    done += n;
+    if (done < steps && wallClock() - begin >= budget) {  // the difference of two steady readings: no overflow
+      return {false, "stopped after " + std::to_string(done) + " of " + std::to_string(steps) +
+                         " steps: a step request takes at most " + formatNumber(settings_.max_request_seconds, 6) +
+                         " s of wall time (max_request_seconds); call step again for the rest"};
+    }
+  }
   return {true, ""};
+}
+
+Nanoseconds World::wallClock() const {
+  if (settings_.wall_clock) return settings_.wall_clock();
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
 }
 
 CommandReply World::rewind() {

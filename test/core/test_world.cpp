@@ -2,6 +2,7 @@
 // pause and step N, reset, the catch-up cap and the limits of time. Every time here is explicit.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 
 #include "rigid_body_sim/kinematics.hpp"
@@ -248,6 +249,50 @@ TEST(World, StepRequestsAreBoundedInBodySteps) {
   EXPECT_FALSE(world.step(-5, 0).accepted);
   EXPECT_EQ(world.scene().integratedSteps(), 0);
   EXPECT_TRUE(world.step(1000, 0).accepted);
+}
+
+TEST(World, AStepRequestStopsAtItsWallTimeBudgetWhereItGotToAndTheRestContinuesTheSameRun) {
+  // A wall clock that advances 0.1 s at every reading, against a budget of 0.25 s: the request stops after
+  // the third chunk (readings at 0.1, 0.2, 0.3 s after its start), each chunk kRequestChunkBodySteps steps
+  // of this one body.
+  for (const bool owns_clock : {false, true}) {
+    Nanoseconds wall = 0;
+    WorldSettings settings = settingsWith();
+    settings.owns_clock = owns_clock;
+    settings.start_paused = true;
+    settings.max_request_seconds = 0.25;
+    settings.wall_clock = [&wall] { return wall += seconds(0.1); };
+    World budgeted = makeWorld(settings);
+    budgeted.setWrench(0, worldForce(1.0), budgeted.stamp());
+    const std::int64_t steps = 10 * kRequestChunkBodySteps + 7;
+    const CommandReply stopped = budgeted.step(steps, budgeted.stamp());
+    EXPECT_FALSE(stopped.accepted);
+    const std::int64_t done = 3 * kRequestChunkBodySteps;
+    EXPECT_NE(stopped.message.find("stopped after " + std::to_string(done) + " of " + std::to_string(steps) + " steps"),
+              std::string::npos)
+        << stopped.message;
+    EXPECT_EQ(budgeted.scene().integratedSteps(), done);
+    EXPECT_EQ(budgeted.clockSteps(), owns_clock ? done : 0);
+    // The rest, in requests within the budget, ends where one uninterrupted request ends, bit for bit.
+    for (std::int64_t left = steps - done; left > 0; left -= 2 * kRequestChunkBodySteps) {
+      ASSERT_TRUE(budgeted.step(std::min(left, 2 * kRequestChunkBodySteps), budgeted.stamp()).accepted);
+    }
+    settings.wall_clock = nullptr;
+    settings.max_request_seconds = std::numeric_limits<double>::infinity();
+    World whole = makeWorld(settings);
+    whole.setWrench(0, worldForce(1.0), whole.stamp());
+    ASSERT_TRUE(whole.step(steps, whole.stamp()).accepted);
+    EXPECT_EQ(budgeted.scene().integratedSteps(), steps);
+    EXPECT_EQ(budgeted.scene().state().p_WB, whole.scene().state().p_WB);
+    EXPECT_EQ(budgeted.scene().state().P_W, whole.scene().state().P_W);
+    EXPECT_EQ(budgeted.clockSteps(), whole.clockSteps());
+    EXPECT_NEAR(velocityX(whole), steps * kDt, 1e-9);  // F = 1 N on 1 kg over every step
+  }
+  WorldSettings settings = settingsWith();
+  settings.max_request_seconds = 0.0;
+  EXPECT_THROW(makeWorld(settings), std::invalid_argument);
+  settings.max_request_seconds = std::nan("");
+  EXPECT_THROW(makeWorld(settings), std::invalid_argument);
 }
 
 TEST(World, ReanchoringAfterABackwardJumpContinuesTheClockWithoutNegativeSteps) {

@@ -117,6 +117,26 @@ TEST_F(Control, StepNAboveTheCatchUpCapTakesExactlyNStepsAndHugeRequestsAreRefus
   EXPECT_EQ(state().total_steps, stepped.total_steps);
 }
 
+TEST_F(Control, AStepRequestPastItsWallTimeBudgetStopsWhereItGotToAndSaysSo) {
+  // The budget node allows 1 ms of wall time per request; 2e6 steps (the count cap) take ~0.2 s or more.
+  rigid_body_sim::Step s;
+  s.request.steps = 2000000;
+  ros::ServiceClient client = nh_.serviceClient<rigid_body_sim::Step>("budget/step");
+  ASSERT_TRUE(client.waitForExistence(ros::Duration(kWaitLimit)));
+  ASSERT_TRUE(client.call(s));
+  EXPECT_FALSE(s.response.success);
+  EXPECT_NE(s.response.message.find("of 2000000 steps"), std::string::npos) << s.response.message;
+  EXPECT_NE(s.response.message.find("max_request_seconds"), std::string::npos) << s.response.message;
+  const std::int64_t first = s.response.total_steps;
+  EXPECT_GT(first, 0);
+  EXPECT_LT(first, 2000000);
+  EXPECT_NEAR(s.response.sim_time, first * kDt, 1e-9);  // the clock moved by the steps taken, not by N
+  s.request.steps = 10;  // within the budget: exactly these steps more
+  ASSERT_TRUE(client.call(s));
+  EXPECT_TRUE(s.response.success) << s.response.message;
+  EXPECT_EQ(s.response.total_steps, first + 10);
+}
+
 TEST_F(Control, ABodyFrameForceAtAPointOnABodyTurnedAboutXActsInBodyAxes) {
   // Turned 90° about world x: body y is world z, body z is world −y. A force (0, 0, 1) N in body axes at the
   // body point (0.1, 0, 0): τ_B = (0.1, 0, 0) × (0, 0, 1) = (0, −0.1, 0) N m, which in world axes is

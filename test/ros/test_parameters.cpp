@@ -52,6 +52,7 @@ TEST(Parameters, DefaultsAreTheDefaultScene) {
   EXPECT_TRUE(config.unknown_parameters.empty());
   EXPECT_TRUE(std::isinf(config.wrench_limits.max_force));  // no limit unless set
   EXPECT_EQ(config.max_energy_growth, 2.0);
+  EXPECT_EQ(config.max_request_seconds, 1.0);  // a step request stops after a second of wall time
 }
 
 TEST(Parameters, ReadsEveryKey) {
@@ -69,6 +70,7 @@ TEST(Parameters, ReadsEveryKey) {
   params["angular_damping"] = 0.25;
   params["wrench_timeout"] = 0.5;
   params["max_substeps"] = 20;
+  params["max_request_seconds"] = 0.5;
   params["publish_tf"] = false;
   params["abs_tolerance"] = 1e-7;
   params["max_force"] = 50.0;
@@ -91,6 +93,7 @@ TEST(Parameters, ReadsEveryKey) {
   EXPECT_EQ(config.bodies[0].model.forces.angular_damping, 0.25);
   EXPECT_EQ(config.wrench_timeout, 0.5);
   EXPECT_EQ(config.max_substeps, 20);
+  EXPECT_EQ(config.max_request_seconds, 0.5);
   EXPECT_FALSE(config.publish.tf);
   EXPECT_EQ(config.integrator_settings.abs_tolerance, 1e-7);
   EXPECT_EQ(config.wrench_limits.max_force, 50.0);
