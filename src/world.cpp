@@ -59,6 +59,7 @@ World::World(const std::vector<BodyDefinition>& bodies, IntegratorType integrato
     throw std::invalid_argument("the step caps must be >= 1");
   }
   if (!(settings.max_request_seconds > 0.0)) throw std::invalid_argument("max_request_seconds must be > 0 [s]");
+  if (!(settings.max_update_seconds > 0.0)) throw std::invalid_argument("max_update_seconds must be > 0 [s]");
   if (!(settings.wrench_timeout >= 0.0) || !std::isfinite(settings.wrench_timeout)) {
     throw std::invalid_argument("wrench_timeout must be a finite number >= 0 [s]");
   }
@@ -143,13 +144,17 @@ UpdateResult World::update(Nanoseconds now) {
   std::int64_t target = stepAt(now);
   target = std::min(target, last_step_);
   std::int64_t budget = updateBudget();
+  // The wall-time budget of a tick (not of our own clock's: that never drops steps).
+  const Nanoseconds deadline = settings_.owns_clock || !std::isfinite(settings_.max_update_seconds)
+                                   ? kNoDeadline
+                                   : saturatingAdd(wallClock(), toNanoseconds(settings_.max_update_seconds));
   for (const Command& command : pending_) {
     const std::int64_t at = std::max(clock_, std::min(stepAt(command.arrival), std::max(clock_, target)));
-    advanceClockTo(at, budget, false, result);
+    advanceClockTo(at, budget, false, result, deadline);
     apply(command, &result);
   }
   pending_.clear();
-  advanceClockTo(target, budget, false, result);
+  advanceClockTo(target, budget, false, result, deadline);
   result.advanced = result.advanced || clock_ > before;
   result.end_of_time = end_of_time_ = clock_ >= last_step_;
   counters_.last_substeps = result.steps;
@@ -157,7 +162,8 @@ UpdateResult World::update(Nanoseconds now) {
   return result;
 }
 
-void World::advanceClockTo(std::int64_t target, std::int64_t& budget, bool integrate_paused, UpdateResult& result) {
+void World::advanceClockTo(std::int64_t target, std::int64_t& budget, bool integrate_paused, UpdateResult& result,
+                           Nanoseconds deadline) {
   while (clock_ < target) {
     const std::int64_t next = std::min(target, nextEvent());
     const std::int64_t due = next - clock_;
@@ -166,14 +172,20 @@ void World::advanceClockTo(std::int64_t target, std::int64_t& budget, bool integ
       clock_ = next;                     // someone else's clock runs; the states hold
     } else {
       const std::int64_t steps = std::min(due, budget);
-      if (steps > 0) {
-        const SceneStepResult stepped = scene_.step(steps);
+      const std::int64_t chunk = deadline == kNoDeadline ? steps : chunkSteps();
+      std::int64_t done = 0;
+      bool out_of_time = false;
+      while (done < steps && !out_of_time) {
+        const std::int64_t n = std::min(chunk, steps - done);
+        const SceneStepResult stepped = scene_.step(n);
         result.steps += stepped.steps;
         result.diverged = result.diverged || stepped.diverged;
-        budget -= steps;
+        done += n;
+        out_of_time = deadline != kNoDeadline && wallClock() >= deadline;
       }
-      result.dropped += due - steps;
-      counters_.dropped_steps += static_cast<std::uint64_t>(due - steps);
+      budget = out_of_time ? 0 : budget - done;  // out of wall time: the rest of this update passes without motion
+      result.dropped += due - done;
+      counters_.dropped_steps += static_cast<std::uint64_t>(due - done);
       clock_ = next;
     }
     expireAt(clock_, result);
@@ -445,7 +457,7 @@ CommandReply World::step(std::int64_t steps, Nanoseconds now) {
     return {false, "refused: the clock would pass the last representable time"};
   }
   // In chunks, the wall clock read between them: a request stops at its time budget, where it got to.
-  const std::int64_t chunk = std::max<std::int64_t>(1, kRequestChunkBodySteps / running);
+  const std::int64_t chunk = chunkSteps();
   const Nanoseconds budget = toNanoseconds(settings_.max_request_seconds), begin = wallClock();
   for (std::int64_t done = 0; done < steps;) {
     const std::int64_t n = std::min(chunk, steps - done);
@@ -464,6 +476,11 @@ CommandReply World::step(std::int64_t steps, Nanoseconds now) {
     }
   }
   return {true, ""};
+}
+
+std::int64_t World::chunkSteps() const {
+  const auto running = static_cast<std::int64_t>(std::max<std::size_t>(1, scene_.runningBodies()));
+  return std::max(kMinChunkSteps, kRequestChunkBodySteps / running);
 }
 
 Nanoseconds World::wallClock() const {

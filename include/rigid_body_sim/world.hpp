@@ -50,7 +50,14 @@ struct WorldSettings {
   /// callbacks) no longer than this, whatever a step costs (a contact step of a stack costs a thousand free
   /// steps). Infinite: no limit.
   double max_request_seconds = std::numeric_limits<double>::infinity();
-  /// The wall clock step(N) times itself with [ns]; std::chrono::steady_clock when empty (tests give their own).
+  /// update() integrates for at most this much wall time [s] (read between chunks, as step(N) does); the
+  /// steps still due then pass without motion, counted as dropped, like the catch-up cap's. A scene that
+  /// cannot keep real time (a pile of contact bodies) then keeps ticking and publishing, slower in simulated
+  /// time, instead of spending seconds in each tick. Not with owns_clock (our own time never drops steps).
+  /// Infinite: no limit.
+  double max_update_seconds = std::numeric_limits<double>::infinity();
+  /// The wall clock step(N) and update() time themselves with [ns]; std::chrono::steady_clock when empty
+  /// (tests give their own).
   std::function<Nanoseconds()> wall_clock;
   double wrench_timeout = 0.0;                 ///< [s]; 0: a topic wrench holds until the next one
   Nanoseconds jitter_tolerance = 0;            ///< backward steps of the clock up to this are waited out [ns]
@@ -94,9 +101,11 @@ struct WorldCounters {
   std::int64_t max_substeps_seen = 0;     ///< most steps one update integrated
 };
 
-/// Body-steps between two readings of the wall clock in step(N) (~0.1 ms of free rk4 bodies, ~30 ms of a
-/// stack of contact boxes).
+/// Body-steps between two readings of the wall clock in step(N) and a timed update() (~0.1 ms of free rk4
+/// bodies, ~5 ms of stacked contact boxes), but at least kMinChunkSteps steps: a tick's usual steps stay one
+/// Scene::step (one hand-out to the threads, one energy check).
 constexpr std::int64_t kRequestChunkBodySteps = 1024;
+constexpr std::int64_t kMinChunkSteps = 16;
 
 class World {
  public:
@@ -214,8 +223,12 @@ class World {
   bool aboutCentreOfMass(const Command& command, AppliedWrench& wrench);
   void apply(const Command& command, UpdateResult* result);
   // Moves the clock to `target`, integrating at most `budget` steps (the rest pass without motion) unless
-  // `integrate_paused` makes a paused world integrate (step N in lockstep).
-  void advanceClockTo(std::int64_t target, std::int64_t& budget, bool integrate_paused, UpdateResult& result);
+  // `integrate_paused` makes a paused world integrate (step N in lockstep). With a `deadline` on the wall
+  // clock, it integrates in chunks and, once a reading is past it, integrates no more (budget 0).
+  void advanceClockTo(std::int64_t target, std::int64_t& budget, bool integrate_paused, UpdateResult& result,
+                      Nanoseconds deadline = kNoDeadline);
+  static constexpr Nanoseconds kNoDeadline = std::numeric_limits<Nanoseconds>::max();
+  std::int64_t chunkSteps() const;  // steps per chunk: kRequestChunkBodySteps body-steps, at least kMinChunkSteps
   std::int64_t nextEvent() const;
   void refreshInput(std::size_t body);
   void expireAt(std::int64_t k, UpdateResult& result);

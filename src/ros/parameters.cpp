@@ -51,7 +51,7 @@ const std::set<std::string> kBodyNames = {
     "max_mesh_bytes", "collision", "urdf", "robot_description", "link"};
 const std::set<std::string> kSceneNames = {
     "rate", "dt", "integrator", "world_frame", "gravity", "bodies", "wrench_timeout", "max_substeps",
-    "max_body_steps_per_tick", "max_body_steps_per_request", "max_request_seconds", "publish_tf",
+    "max_body_steps_per_tick", "max_body_steps_per_request", "max_request_seconds", "max_tick_seconds", "publish_tf",
     "publish", "abs_tolerance", "rel_tolerance", "max_force", "max_torque", "max_energy_growth", "lockstep",
     "real_time_factor", "start_paused", "noise", "environment", "contact", "marker_rate", "threads",
     // The live parameters' namespace (dynamic_reconfigure writes its values there); not read at start-up.
@@ -392,6 +392,9 @@ void readLimits(const XmlRpcValue& params, NodeConfig& config) {
   config.max_request_seconds = readNumber(params, "max_request_seconds", config.max_request_seconds,
                                           [](double s) { return s > 0.0 && s <= 3600.0; },
                                           "must be a finite number in (0, 3600] [s] (wall time one step request may take)");
+  config.max_tick_seconds = readNumber(params, "max_tick_seconds", config.max_tick_seconds,
+                                       [](double s) { return s > 0.0 && s <= 3600.0; },
+                                       "must be a finite number in (0, 3600] [s] (wall time one tick may integrate for)");
   config.threads = static_cast<std::size_t>(readInteger(params, "threads", 0, 0, kThreadsAllowed));
   if (config.threads > kMaxThreads) failAt(params, "threads", XmlRpcValue(), kThreadsAllowed);
 }

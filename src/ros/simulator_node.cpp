@@ -32,6 +32,7 @@ rigid_body::WorldSettings worldSettings(const NodeConfig& config) {
   settings.max_body_steps_per_update = config.max_body_steps_per_tick;
   settings.max_body_steps_per_request = config.max_body_steps_per_request;
   settings.max_request_seconds = config.max_request_seconds;
+  settings.max_update_seconds = config.max_tick_seconds;
   settings.threads = config.threads;
   settings.wrench_timeout = config.wrench_timeout;
   // ROS time going back by less than one tick period is clock jitter, waited out; more re-anchors the grid.

@@ -295,6 +295,41 @@ TEST(World, AStepRequestStopsAtItsWallTimeBudgetWhereItGotToAndTheRestContinuesT
   EXPECT_THROW(makeWorld(settings), std::invalid_argument);
 }
 
+TEST(World, AnUpdatePastItsWallTimeBudgetDropsTheRestOfItsStepsAndTheNextOneGoesOn) {
+  // A wall clock that advances 0.1 s at every reading, against an update budget of 0.25 s (deadline 0.35 s
+  // after the first reading at 0.1 s): an update 5 s late integrates three chunks of kRequestChunkBodySteps
+  // (readings at 0.2, 0.3, 0.4 s) and lets the rest pass without motion, counted as dropped.
+  Nanoseconds wall = 0;
+  WorldSettings settings = settingsWith(100000);  // the catch-up cap out of the way
+  settings.max_update_seconds = 0.25;
+  settings.wall_clock = [&wall] { return wall += seconds(0.1); };
+  World world = makeWorld(settings);
+  world.setWrench(0, worldForce(1.0), 0);
+  const UpdateResult late = world.update(seconds(5.0));
+  const std::int64_t done = 3 * kRequestChunkBodySteps;
+  EXPECT_EQ(late.steps, done);
+  EXPECT_EQ(late.dropped, 5000 - done);
+  EXPECT_EQ(world.counters().dropped_steps, static_cast<std::uint64_t>(5000 - done));
+  EXPECT_EQ(world.clockSteps(), 5000);  // the clock is the caller's: it moved on
+  EXPECT_NEAR(velocityX(world), done * kDt, 1e-9);  // F = 1 N on 1 kg over the steps integrated only
+  // The next tick's 10 steps fit into its own budget.
+  const UpdateResult next = world.update(seconds(5.01));
+  EXPECT_EQ(next.steps, 10);
+  EXPECT_EQ(next.dropped, 0);
+  // Without a budget the same late update integrates every step.
+  settings.max_update_seconds = std::numeric_limits<double>::infinity();
+  World unlimited = makeWorld(settings);
+  unlimited.setWrench(0, worldForce(1.0), 0);
+  EXPECT_EQ(unlimited.update(seconds(5.0)).steps, 5000);
+  // A world with its own clock (lockstep) never drops steps for wall time.
+  settings.max_update_seconds = 1e-9;
+  settings.owns_clock = true;
+  World own = makeWorld(settings);
+  EXPECT_EQ(own.update(own.timeOfStep(3000)).steps, 3000);
+  settings.max_update_seconds = -1.0;
+  EXPECT_THROW(makeWorld(settings), std::invalid_argument);
+}
+
 TEST(World, ReanchoringAfterABackwardJumpContinuesTheClockWithoutNegativeSteps) {
   WorldSettings settings = settingsWith();
   settings.dt = 0.01;

@@ -77,6 +77,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"max_substeps_type", "_max_substeps:=1e9", "parameter ~max_substeps"},
                       Case{"request_bound", "_max_body_steps_per_request:=0", "parameter ~max_body_steps_per_request = 0"},
                       Case{"request_seconds", "_max_request_seconds:=0", "parameter ~max_request_seconds = 0: must be a finite number in (0, 3600]"},
+                      Case{"tick_seconds", "_max_tick_seconds:=1e9", "parameter ~max_tick_seconds = 1000000000: must be a finite number in (0, 3600]"},
                       // Struct keys of the wrong type, and keys that mean nothing for the shape.
                       Case{"publish_type", "_publish:=5", "parameter ~publish = 5: must be a struct of"},
                       Case{"noise_type", "_noise:=loud", "parameter ~noise = 'loud': must be a struct of"},

@@ -53,6 +53,7 @@ TEST(Parameters, DefaultsAreTheDefaultScene) {
   EXPECT_TRUE(std::isinf(config.wrench_limits.max_force));  // no limit unless set
   EXPECT_EQ(config.max_energy_growth, 2.0);
   EXPECT_EQ(config.max_request_seconds, 1.0);  // a step request stops after a second of wall time
+  EXPECT_EQ(config.max_tick_seconds, 0.25);
 }
 
 TEST(Parameters, ReadsEveryKey) {
@@ -71,6 +72,7 @@ TEST(Parameters, ReadsEveryKey) {
   params["wrench_timeout"] = 0.5;
   params["max_substeps"] = 20;
   params["max_request_seconds"] = 0.5;
+  params["max_tick_seconds"] = 0.05;
   params["publish_tf"] = false;
   params["abs_tolerance"] = 1e-7;
   params["max_force"] = 50.0;
@@ -94,6 +96,7 @@ TEST(Parameters, ReadsEveryKey) {
   EXPECT_EQ(config.wrench_timeout, 0.5);
   EXPECT_EQ(config.max_substeps, 20);
   EXPECT_EQ(config.max_request_seconds, 0.5);
+  EXPECT_EQ(config.max_tick_seconds, 0.05);
   EXPECT_FALSE(config.publish.tf);
   EXPECT_EQ(config.integrator_settings.abs_tolerance, 1e-7);
   EXPECT_EQ(config.wrench_limits.max_force, 50.0);
