@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <stdexcept>
 
@@ -92,15 +93,28 @@ void exact(const TriangleMesh& input, MeshMassProperties& out) {
   out.I_Bcm_M = density * I - out.mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
 }
 
+// The points sampling draws: `samples`, or for a stratified grid the n³ cells nearest to it.
+std::uint64_t samplingDraws(const MeshMassOptions& options, int& cells) {
+  cells = std::max(1, static_cast<int>(std::round(std::cbrt(static_cast<double>(options.samples)))));
+  return options.stratified ? static_cast<std::uint64_t>(cells) * cells * cells : options.samples;
+}
+
 void sampling(const TriangleMesh& mesh, const MeshMassOptions& options, MeshMassProperties& out) {
+  const std::uint64_t tests = samplingTests(mesh.triangles.size(), options);
+  if (tests > kMaxSamplingTests) {
+    throw MeshError("sampling: " + std::to_string(options.samples) + " samples on " +
+                    std::to_string(mesh.triangles.size()) + " triangles are " + std::to_string(tests) +
+                    " ray-triangle tests, more than the limit of " + std::to_string(kMaxSamplingTests) +
+                    " (~10 s): use fewer samples or the exact method");
+  }
   Eigen::AlignedBox3d bounds;
   for (const auto& p : mesh.vertices) bounds.extend(p);
   const Eigen::Vector3d size = bounds.sizes();
   std::mt19937_64 generator(options.seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   // Stratified: a grid of n³ ≈ samples cells with one jittered point each.
-  const int cells = std::max(1, static_cast<int>(std::round(std::cbrt(static_cast<double>(options.samples)))));
-  const std::uint64_t draws = options.stratified ? static_cast<std::uint64_t>(cells) * cells * cells : options.samples;
+  int cells = 1;
+  const std::uint64_t draws = samplingDraws(options, cells);
   std::vector<Eigen::Vector3d> inside;
   inside.reserve(draws);
   for (std::uint64_t k = 0; k < draws; ++k) {
@@ -162,6 +176,15 @@ InertiaMethod inertiaMethodFromName(const std::string& name) {
   }
   throw std::invalid_argument("unknown inertia method '" + name +
                               "', valid: exact, sampling, bounding_box, oriented_bounding_box");
+}
+
+std::uint64_t samplingTests(std::size_t triangles, const MeshMassOptions& options) {
+  int cells = 1;
+  std::uint64_t tests = 0;
+  if (__builtin_mul_overflow(samplingDraws(options, cells), static_cast<std::uint64_t>(triangles), &tests)) {
+    return std::numeric_limits<std::uint64_t>::max();
+  }
+  return tests;
 }
 
 bool isInside(const TriangleMesh& mesh, const Eigen::Vector3d& point) {

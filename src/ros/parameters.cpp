@@ -107,6 +107,15 @@ rigid_body::MassProperties readMeshMassProperties(const XmlRpcValue& params, Bod
   const bool principal_axes = readBool(params, "principal_axes", false);
   try {
     config.mesh = rigid_body::transformed(rigid_body::loadMesh(config.mesh_path, max_bytes), scale);
+    const std::size_t triangles = config.mesh.triangles.size();
+    if (options.method == rigid_body::InertiaMethod::kSampling &&
+        rigid_body::samplingTests(triangles, options) > rigid_body::kMaxSamplingTests) {
+      failAt(params, "samples", XmlRpcValue(static_cast<int>(options.samples)),
+             "with this mesh's " + std::to_string(triangles) + " triangles, must be at most " +
+                 std::to_string(rigid_body::kMaxSamplingTests / std::max<std::size_t>(1, triangles)) +
+                 " (samples x triangles ray-triangle tests at most " + std::to_string(rigid_body::kMaxSamplingTests) +
+                 ", ~10 s of start-up), or use inertia_method exact");
+    }
     const rigid_body::MeshMassProperties properties = rigid_body::meshMassProperties(config.mesh, options);
     config.mesh_warnings = properties.warnings;
     const rigid_body::MeshBody body = rigid_body::meshBody(properties, principal_axes);

@@ -206,6 +206,30 @@ TEST(MeshErrors, BrokenMeshesGiveClearErrors) {
 
 // Every class of malformed input the readers can meet, written to a temporary file: each must give a
 // MeshError that says what is wrong, never a crash, an out-of-range read or a hang.
+TEST(MeshErrors, SamplingBeyondItsTestBudgetIsRefusedBeforeItStarts) {
+  // sphere.stl has 1 280 triangles: 1 562 500 samples are 2e9 ray-triangle tests, the limit; one more is over.
+  const TriangleMesh sphere = loadMesh(kMeshes + "/sphere.stl");
+  ASSERT_EQ(sphere.triangles.size(), 1280u);
+  MeshMassOptions options;
+  options.method = InertiaMethod::kSampling;
+  options.mass = 1.0;
+  options.samples = kMaxSamplingTests / 1280;
+  EXPECT_EQ(samplingTests(1280, options), kMaxSamplingTests);
+  options.samples += 1;
+  EXPECT_GT(samplingTests(1280, options), kMaxSamplingTests);
+  try {
+    meshMassProperties(sphere, options);
+    ADD_FAILURE() << "sampling over its budget ran";
+  } catch (const MeshError& error) {
+    EXPECT_NE(std::string(error.what()).find("1562501 samples on 1280 triangles"), std::string::npos) << error.what();
+  }
+  options.samples = std::numeric_limits<std::uint64_t>::max();  // saturates, no overflow
+  EXPECT_EQ(samplingTests(1280, options), std::numeric_limits<std::uint64_t>::max());
+  options.stratified = true;
+  options.samples = 1000;  // a 10³ grid
+  EXPECT_EQ(samplingTests(1280, options), 1280000u);
+}
+
 TEST(MeshErrors, MalformedFilesOfEveryClassAreRefusedWithAMessage) {
   const std::string directory = ::testing::TempDir();
   const auto message = [&](const std::string& name, const std::string& content) -> std::string {

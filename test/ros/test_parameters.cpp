@@ -240,6 +240,18 @@ TEST(Parameters, UnknownNamesAreReported) {
   EXPECT_EQ(config.unknown_parameters[1], "initial/postion");
 }
 
+TEST(Parameters, SamplingMoreThanTheMeshAllowsNamesSamplesAndItsLimit) {
+  XmlRpcValue params;  // sphere.stl: 1 280 triangles, so at most 2e9 / 1280 = 1 562 500 samples
+  params["shape"] = std::string("mesh");
+  params["mesh"] = std::string(TEST_MESH_DIR "/sphere.stl");
+  params["mass"] = 1.0;
+  params["inertia_method"] = std::string("sampling");
+  params["samples"] = 10000000;
+  EXPECT_NE(errorOf(params).find("parameter ~samples = 10000000: with this mesh's 1280 triangles, must be at most 1562500"),
+            std::string::npos)
+      << errorOf(params);
+}
+
 TEST(Parameters, MeshBodyFromAFileOrAPackageUri) {
   XmlRpcValue params;
   params["shape"] = std::string("mesh");
