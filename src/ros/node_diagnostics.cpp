@@ -102,6 +102,7 @@ void NodeDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat
   status.add("rejected unknown_frame", rejections.unknown_frame);
   status.add("rejected by the core", rejections.refused_by_core);
   status.add("rejected unknown_body", rejections.unknown_body);
+  status.add("rejected oversized", rejections.oversized);
   status.add("refused commands", counters.refused_commands);
   status.add("refused moment arms", counters.refused_moment_arms);
   status.add("messages withheld (non-finite)", outputs_.withheld());

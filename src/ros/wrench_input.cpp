@@ -210,6 +210,17 @@ void WrenchInput::onWrench(std::size_t body, const geometry_msgs::WrenchStamped&
 }
 
 void WrenchInput::onBodyWrenches(const rigid_body_sim::BodyWrenches& message) {
+  // A message has a use for one wrench per body at most (a later one for the same body replaces the earlier),
+  // so one with more items than the scene has bodies is refused whole: each item costs a conversion and
+  // perhaps a tf lookup, and a message of 300 000 items in an unknown frame held the callbacks for 1.5 s.
+  if (message.wrenches.size() > config_.bodies.size()) {
+    ++rejections_.oversized;
+    ROS_WARN_THROTTLE(kWarningPeriod,
+                      "rigid_body_node: bodies/wrench: a message of %zu wrenches for a scene of %zu bodies is refused "
+                      "whole: at most one per body (%lu so far)",
+                      message.wrenches.size(), config_.bodies.size(), static_cast<unsigned long>(rejections_.oversized));
+    return;
+  }
   for (const rigid_body_sim::BodyWrench& item : message.wrenches) {
     const auto found = body_by_name_.find(item.body);
     if (found == body_by_name_.end() || !config_.bodies[found->second].wrench_input) {

@@ -180,6 +180,17 @@ TEST(Scene, WithoutPerBodyTopicsOneArrayCarriesEveryBodyAndNamedWrenchesMoveThei
   EXPECT_TRUE(diagnostics.waitFor("many/node: rigid body scene", [](const diagnostic_msgs::DiagnosticStatus& s) {
     return Diagnostics::value(s, "rejected unknown_body") == "2";
   }));
+  // More wrenches than the scene has bodies: the message is refused whole, its push on `first` included.
+  rigid_body_sim::BodyWrenches oversized;
+  push.body = "first";
+  oversized.wrenches.assign(4, push);
+  publisher.publish(oversized);
+  EXPECT_TRUE(diagnostics.waitFor("many/node: rigid body scene", [](const diagnostic_msgs::DiagnosticStatus& s) {
+    return Diagnostics::value(s, "rejected oversized") == "1";
+  }));
+  rigid_body_sim::OdometryArray c;
+  ASSERT_TRUE(all.waitForStampAfter(all.messages.back().header.stamp + ros::Duration(0.1), c));
+  EXPECT_EQ(worldVelocity(c.bodies[0]), Eigen::Vector3d::Zero());
 }
 
 int main(int argc, char** argv) {

@@ -37,8 +37,9 @@ struct WrenchRejections {
   std::uint64_t unknown_frame = 0;   ///< a frame tf2 could not resolve
   std::uint64_t refused_by_core = 0; ///< the World refused the command (queue full, body without input)
   std::uint64_t unknown_body = 0;    ///< bodies/wrench items naming no body that takes wrenches
+  std::uint64_t oversized = 0;       ///< bodies/wrench messages with more wrenches than the scene has bodies
   std::uint64_t total() const {
-    return non_finite + force_limit + torque_limit + unknown_frame + refused_by_core + unknown_body;
+    return non_finite + force_limit + torque_limit + unknown_frame + refused_by_core + unknown_body + oversized;
   }
 };
 
