@@ -118,8 +118,8 @@ std::int64_t World::stepAt(Nanoseconds time) const {
 }
 
 std::int64_t World::updateBudget() const {
-  const auto running = static_cast<std::int64_t>(std::max<std::size_t>(1, scene_.runningBodies()));
-  return std::min(settings_.max_substeps, std::max<std::int64_t>(1, settings_.max_body_steps_per_update / running));
+  return std::min(settings_.max_substeps,
+                  std::max<std::int64_t>(1, settings_.max_body_steps_per_update / runningCount()));
 }
 
 UpdateResult World::update(Nanoseconds now) {
@@ -145,9 +145,7 @@ UpdateResult World::update(Nanoseconds now) {
   target = std::min(target, last_step_);
   std::int64_t budget = updateBudget();
   // The wall-time budget of a tick (not of our own clock's: that never drops steps).
-  const Nanoseconds deadline = settings_.owns_clock || !std::isfinite(settings_.max_update_seconds)
-                                   ? kNoDeadline
-                                   : saturatingAdd(wallClock(), toNanoseconds(settings_.max_update_seconds));
+  const Nanoseconds deadline = settings_.owns_clock ? kNoDeadline : deadlineAfter(settings_.max_update_seconds);
   for (const Command& command : pending_) {
     const std::int64_t at = std::max(clock_, std::min(stepAt(command.arrival), std::max(clock_, target)));
     advanceClockTo(at, budget, false, result, deadline);
@@ -445,8 +443,7 @@ CommandReply World::step(std::int64_t steps, Nanoseconds now) {
   if (steps < 1) return {false, "steps must be >= 1"};
   if (!settings_.owns_clock) update(now);  // what arrived before the request acts first (paused: no motion)
   if (!paused_) return {false, "call pause first: step advances a paused simulation"};
-  const auto running = static_cast<std::int64_t>(std::max<std::size_t>(1, scene_.runningBodies()));
-  const std::int64_t most = std::max<std::int64_t>(1, settings_.max_body_steps_per_request / running);
+  const std::int64_t most = std::max<std::int64_t>(1, settings_.max_body_steps_per_request / runningCount());
   if (steps > most) {
     return {false, "refused: at most " + std::to_string(most) + " steps per call for this scene (" +
                        std::to_string(settings_.max_body_steps_per_request) +
@@ -456,9 +453,10 @@ CommandReply World::step(std::int64_t steps, Nanoseconds now) {
     end_of_time_ = true;
     return {false, "refused: the clock would pass the last representable time"};
   }
-  // In chunks, the wall clock read between them: a request stops at its time budget, where it got to.
-  const std::int64_t chunk = chunkSteps();
-  const Nanoseconds budget = toNanoseconds(settings_.max_request_seconds), begin = wallClock();
+  // In chunks, the wall clock read between them (as advanceClockTo does for a tick): a request stops at its
+  // time budget, where it got to.
+  const Nanoseconds deadline = deadlineAfter(settings_.max_request_seconds);
+  const std::int64_t chunk = deadline == kNoDeadline ? steps : chunkSteps();
   for (std::int64_t done = 0; done < steps;) {
     const std::int64_t n = std::min(chunk, steps - done);
     if (settings_.owns_clock) {
@@ -469,7 +467,7 @@ CommandReply World::step(std::int64_t steps, Nanoseconds now) {
       scene_.step(n);  // the clock is someone else's: it stays where it is
     }
     done += n;
-    if (done < steps && wallClock() - begin >= budget) {  // the difference of two steady readings: no overflow
+    if (done < steps && deadline != kNoDeadline && wallClock() >= deadline) {
       return {false, "stopped after " + std::to_string(done) + " of " + std::to_string(steps) +
                          " steps: a step request takes at most " + formatNumber(settings_.max_request_seconds, 6) +
                          " s of wall time (max_request_seconds); call step again for the rest"};
@@ -478,9 +476,14 @@ CommandReply World::step(std::int64_t steps, Nanoseconds now) {
   return {true, ""};
 }
 
-std::int64_t World::chunkSteps() const {
-  const auto running = static_cast<std::int64_t>(std::max<std::size_t>(1, scene_.runningBodies()));
-  return std::max(kMinChunkSteps, kRequestChunkBodySteps / running);
+std::int64_t World::runningCount() const {
+  return static_cast<std::int64_t>(std::max<std::size_t>(1, scene_.runningBodies()));
+}
+
+std::int64_t World::chunkSteps() const { return std::max(kMinChunkSteps, kRequestChunkBodySteps / runningCount()); }
+
+Nanoseconds World::deadlineAfter(double seconds) const {
+  return std::isfinite(seconds) ? saturatingAdd(wallClock(), toNanoseconds(seconds)) : kNoDeadline;
 }
 
 Nanoseconds World::wallClock() const {

@@ -228,7 +228,9 @@ class World {
   void advanceClockTo(std::int64_t target, std::int64_t& budget, bool integrate_paused, UpdateResult& result,
                       Nanoseconds deadline = kNoDeadline);
   static constexpr Nanoseconds kNoDeadline = std::numeric_limits<Nanoseconds>::max();
-  std::int64_t chunkSteps() const;  // steps per chunk: kRequestChunkBodySteps body-steps, at least kMinChunkSteps
+  std::int64_t runningCount() const;  // the running bodies, at least 1 (the caps divide by it)
+  std::int64_t chunkSteps() const;    // steps per chunk: kRequestChunkBodySteps body-steps, at least kMinChunkSteps
+  Nanoseconds deadlineAfter(double seconds) const;  // the wall clock plus `seconds`; kNoDeadline for an infinite budget
   std::int64_t nextEvent() const;
   void refreshInput(std::size_t body);
   void expireAt(std::int64_t k, UpdateResult& result);

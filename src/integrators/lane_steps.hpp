@@ -35,8 +35,11 @@
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
 
-// The step's pieces are inlined into each other whatever the compiler's size heuristics say: left to them,
-// GCC kept laneWrench and the semi-implicit step as calls (perf), each a stack frame of lane structs.
+// The step's pieces, down to the vector operators and the loads and stores, are inlined into each other
+// whatever the compiler's size heuristics say: left to them, GCC kept laneWrench and the semi-implicit step
+// as calls (perf), each a stack frame of lane structs, and under link-time optimisation its choices for the
+// small helpers followed its budget for the whole library, so that edits to other files moved the lone step
+// by up to 15 % (docs/performance.md).
 #define RIGID_BODY_LANE_INLINE inline __attribute__((always_inline))
 
 namespace rigid_body {
@@ -287,8 +290,9 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneRk4Step(const LaneBody<T>& b, const Step
   // Y + h/6 k1 + h/3 k2 + h/3 k3 + h/6 k4, each rate scaled before the sum: rates near the largest double
   // (a wrench of 1e308 N) then overflow no sooner than the state they move.
   const T third = T{} + h / 3.0;
-  LaneState<T> next = advanced(advanced(advanced(advanced(y, sixth, k1, rotation), third, k2, rotation), third, k3, rotation),
-                               sixth, k4, rotation);
+  LaneState<T> next = advanced(
+      advanced(advanced(advanced(y, sixth, k1, rotation), third, k2, rotation), third, k3, rotation), sixth, k4,
+      rotation);
   if (rotation) normaliseQuaternion(next);  // without it q is y's, untouched
   next.t = y.t + h;
   return next;
@@ -319,8 +323,8 @@ RIGID_BODY_LANE_INLINE void setLane(Mat<T>& to, std::size_t i, const Eigen::Matr
 // Lane i of b from a body, only what a step of `type` with these terms reads (a lone body's step loads it at
 // every call: a step that needs little loads little).
 template <class T>
-RIGID_BODY_LANE_INLINE void loadBody(LaneBody<T>& b, std::size_t i, IntegratorType type, const StepTerms& terms, const Model& model,
-                     const AppliedWrench& input) {
+RIGID_BODY_LANE_INLINE void loadBody(LaneBody<T>& b, std::size_t i, IntegratorType type, const StepTerms& terms,
+                                     const Model& model, const AppliedWrench& input) {
   setLane(b.inverse_mass, i, model.mass.inverseMass());
   const bool rotation = terms.rotation || (type == IntegratorType::kSemiImplicitEuler && terms.angular_damping);
   if (rotation && terms.world_inertia) {
@@ -536,8 +540,8 @@ bool wideLanesAvailable();
 /// with edits to the others' (perf: ±15 % on a lone step from an edit elsewhere). The result goes into
 /// `state` only if acceptableLanes accepts it; returns whether it did.
 template <IntegratorType kType>
-__attribute__((noinline)) bool laneStep(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h,
-                                     State& state) {
+__attribute__((noinline)) bool laneStep(const Model& model, const StepTerms& terms, const AppliedWrench& input,
+                                        double h, State& state) {
   LaneBody<double> b;
   loadBody(b, 0, kType, terms, model, input);
   LaneState<double> y;
