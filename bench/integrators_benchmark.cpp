@@ -5,7 +5,9 @@
 // on a sphere; the torque-free body is the asymmetric scene of the tests; the gravity-only body falls without
 // spin or input. Each case runs twice: "all_terms" evaluates every term of the step (StepTerms::all()), and
 // "assembled" only those the scene declares (assembleTerms), so the ratio is what leaving out saves.
-// Each iteration is one step of 1 ms.
+// Each iteration is one step of 1 ms. rk4 and semi-implicit Euler run once more as ".../baseline_isa", with
+// IntegratorSettings::wide_instructions off: the step in the build's own instruction set where the default
+// picks AVX-512 at run time (the two compared: docs/performance.md).
 #include <benchmark/benchmark.h>
 
 #include "rigid_body_sim/integrators.hpp"
@@ -41,14 +43,16 @@ AppliedWrench generalInput() {
   return input;
 }
 
-enum class Terms { kAll, kAssembled };
+enum class Terms { kAll, kAssembled, kAssembledBaselineIsa };
 
 // Times one step of 1 ms per iteration and reports the f evaluations per step.
 void timeSteps(benchmark::State& bench, IntegratorType type, Model model, const AppliedWrench& input, State state,
                Terms terms) {
   const StepTerms step_terms = terms == Terms::kAll ? StepTerms::all()
                                                    : assembleTerms(model.mass, model.forces, state, !input.isZero());
-  Integrator integrator(type);
+  IntegratorSettings settings;
+  settings.wide_instructions = terms != Terms::kAssembledBaselineIsa;
+  Integrator integrator(type, settings);
   for (auto _ : bench) {
     integrator.step(model, step_terms, input, 0.001, state);
     benchmark::DoNotOptimize(state);
@@ -96,9 +100,13 @@ int registerAll() {
                                                 {"gravity_only", stepGravityOnlyBody}};
   for (const auto& [name, run] : cases) {
     for (IntegratorType type : allIntegrators()) {
-      for (Terms terms : {Terms::kAll, Terms::kAssembled}) {
-        const std::string label =
-            std::string(name) + "/" + integratorName(type) + (terms == Terms::kAll ? "/all_terms" : "/assembled");
+      for (Terms terms : {Terms::kAll, Terms::kAssembled, Terms::kAssembledBaselineIsa}) {
+        const bool wide = type == IntegratorType::kRk4 || type == IntegratorType::kSemiImplicitEuler;
+        if (terms == Terms::kAssembledBaselineIsa && !wide) continue;
+        const char* suffix = terms == Terms::kAll         ? "/all_terms"
+                             : terms == Terms::kAssembled ? "/assembled"
+                                                          : "/assembled/baseline_isa";
+        const std::string label = std::string(name) + "/" + integratorName(type) + suffix;
         benchmark::RegisterBenchmark(label.c_str(), run, type, terms);
       }
     }

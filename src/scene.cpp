@@ -230,7 +230,7 @@ void Scene::stepLanes(const std::size_t* bodies, std::size_t count, std::int64_t
   std::array<std::int64_t, kLanes> done;
   std::array<bool, kLanes> running;
   if constexpr (kLaneCount<T> == 1) {
-    runLanes(integrator_type_, constants, terms, dt_, steps, count, y, done.data(), running.data());
+    runLone(wide_lanes_, integrator_type_, constants, terms, dt_, steps, y, done.data(), running.data());
   } else {
     runBatch(wide_lanes_, integrator_type_, constants, terms, dt_, steps, count, y, done.data(), running.data());
   }

@@ -69,6 +69,9 @@ struct IntegratorSettings {
   /// implicit_midpoint: the Newton iteration stops when the update is below this, relative to |m|.
   double newton_tolerance = 1e-15;
   int newton_max_iterations = 20;  ///< implicit_midpoint: the cap, beyond which the step fails
+  /// rk4, semi_implicit_euler: step in AVX-512's instructions where the CPU has them, in the build's own
+  /// (x86-64: SSE2) where it has not or this is false. The same results bit for bit either way.
+  bool wide_instructions = true;
 };
 
 /// Work counters since construction: the machine-independent cost of the method.
@@ -117,6 +120,7 @@ class Integrator {
 
   IntegratorType type_;
   IntegratorSettings settings_;
+  bool wide_;  // settings_.wide_instructions and the CPU has them
   IntegratorStatistics statistics_;
 
   // dopri5: the last accepted internal step [t0, t0 + h] with what dense output needs, and the size the

@@ -121,9 +121,10 @@ class Scene {
   /// A body's state at construction (and after every reset), for drift diagnostics.
   const State& initialState(std::size_t body = 0) const { return records_[body].initial; }
 
-  /// Whether four-body batches run as 256-bit (AVX) operations; on by default where the CPU has AVX. Off, they
-  /// run on the build's baseline vectors (SSE2). The results are the same bits either way; returns the setting
-  /// taken (on only where available).
+  /// Whether four-body batches run as 256-bit (AVX) operations, and a body without a batch in AVX-512's
+  /// instructions (rk4, semi-implicit Euler, where the CPU has them); on by default where the CPU has AVX.
+  /// Off, both run in the build's baseline instructions (SSE2). The results are the same bits either way;
+  /// returns the setting taken (on only where AVX is available).
   bool setWideLanes(bool on);
   bool wideLanes() const { return wide_lanes_; }
 
