@@ -122,7 +122,7 @@ class Scene {
   const State& initialState(std::size_t body = 0) const { return records_[body].initial; }
 
   /// Whether four-body batches run as 256-bit (AVX) operations, and a body without a batch in AVX-512's
-  /// instructions (rk4, semi-implicit Euler, where the CPU has them); on by default where the CPU has AVX.
+  /// instructions (where the CPU has them); on by default where the CPU has AVX.
   /// Off, both run in the build's baseline instructions (SSE2). The results are the same bits either way;
   /// returns the setting taken (on only where AVX is available).
   bool setWideLanes(bool on);

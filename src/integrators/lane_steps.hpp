@@ -572,7 +572,7 @@ void runBatch(bool wide, IntegratorType type, const LaneBody<Lanes>& b, const St
 /// Whether this CPU (and its operating system) runs AVX: checked once.
 bool wideLanesAvailable();
 /// runLanes for one body (a Scene's body without a batch to share), each method a function of its own; with
-/// `wide` (and wideLoneStepsAvailable()), rk4 and semi-implicit Euler in AVX-512's instructions: the same bits.
+/// `wide` (and wideLoneStepsAvailable()) in AVX-512's instructions: the same bits.
 void runLone(bool wide, IntegratorType type, const LaneBody<double>& b, const StepTerms& terms, double h,
              std::int64_t steps, LaneState<double>& y, std::int64_t* done, bool* running);
 

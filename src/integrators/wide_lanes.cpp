@@ -50,8 +50,9 @@ template <IntegratorType kType>
 void runLoneOf(bool wide, const LaneBody<double>& b, const StepTerms& terms, double h, std::int64_t steps,
                LaneState<double>& y, std::int64_t* done, bool* running) {
 #ifdef RIGID_BODY_WIDE_LONE_STEPS
-  // explicit Euler measured slower in AVX-512's instructions (as Integrator::step)
-  if (wide && kType != IntegratorType::kExplicitEuler && wideLoneStepsAvailable()) {
+  // All three methods: explicit Euler's loop, unlike its single step (Integrator::step), measured as fast here
+  // as before it was a function of its own, and slower in SSE2 on its own (docs/performance.md).
+  if (wide && wideLoneStepsAvailable()) {
     runLoneWide<kType>(b, terms, h, steps, y, done, running);
     return;
   }
