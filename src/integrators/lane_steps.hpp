@@ -628,7 +628,8 @@ __attribute__((noinline, flatten, target("avx512f"))) bool laneStepWide(const Mo
   return laneStepOf<kType>(model, terms, input, h, state);
 }
 #endif
-/// runLanes for one body, each method a function of its own (runLone).
+/// runLanes for one body, each method a function of its own (runLone, in wide_lanes.cpp). Here rather than
+/// there, so that semi-implicit Euler's is compiled in lone_semi_implicit_euler.cpp, as its lone step is.
 template <IntegratorType kType>
 __attribute__((noinline)) void runLonePortable(const LaneBody<double>& b, const StepTerms& terms, double h,
                                                std::int64_t steps, LaneState<double>& y, std::int64_t* done,
