@@ -618,11 +618,12 @@ __attribute__((noinline)) bool laneStep(const Model& model, const StepTerms& ter
 #define RIGID_BODY_WIDE_LONE_STEPS 1
 /// laneStep compiled for AVX-512 (`flatten`: the whole step inlined into it, Eigen's loads and stores too),
 /// picked at run time by Integrator where wideLoneStepsAvailable(): the same scalar IEEE operations in the same
-/// order (no contraction in the core), so the same bits, in three-operand instructions with 32 registers
-/// instead of SSE2's two-operand ones with 16: fewer copies and spills of RK4's ~50 live values. Used for
-/// rk4 and semi-implicit Euler; explicit Euler's step measured slower so (docs/performance.md).
+/// order, so the same bits, in three-operand instructions with 32 registers instead of SSE2's two-operand
+/// ones with 16: fewer copies and spills of RK4's ~50 live values. Used for rk4 and semi-implicit Euler;
+/// explicit Euler's step measured slower so (docs/performance.md).
+#define RIGID_BODY_LONE_WIDE_TARGET target("avx512f")
 template <IntegratorType kType>
-__attribute__((noinline, flatten, target("avx512f"))) bool laneStepWide(const Model& model, const StepTerms& terms,
+__attribute__((noinline, flatten, RIGID_BODY_LONE_WIDE_TARGET)) bool laneStepWide(const Model& model, const StepTerms& terms,
                                                                         const AppliedWrench& input, double h,
                                                                         State& state) {
   return laneStepOf<kType>(model, terms, input, h, state);
@@ -639,7 +640,7 @@ __attribute__((noinline)) void runLonePortable(const LaneBody<double>& b, const 
 #ifdef RIGID_BODY_WIDE_LONE_STEPS
 /// runLonePortable in AVX-512's instructions, as laneStepWide.
 template <IntegratorType kType>
-__attribute__((noinline, target("avx512f"))) void runLoneWide(const LaneBody<double>& b, const StepTerms& terms,
+__attribute__((noinline, RIGID_BODY_LONE_WIDE_TARGET)) void runLoneWide(const LaneBody<double>& b, const StepTerms& terms,
                                                               double h, std::int64_t steps, LaneState<double>& y,
                                                               std::int64_t* done, bool* running) {
   runLanes(kType, b, terms, h, steps, 1, y, done, running);
@@ -670,4 +671,5 @@ extern template void runLoneWide<IntegratorType::kSemiImplicitEuler>(const LaneB
 }  // namespace rigid_body
 
 #undef RIGID_BODY_LANE_INLINE
+#undef RIGID_BODY_LONE_WIDE_TARGET
 #pragma GCC diagnostic pop
