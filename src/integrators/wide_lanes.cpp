@@ -5,6 +5,8 @@
 // built with -mavx would change Eigen's alignment and disagree with the rest).
 #include "lane_steps.hpp"
 
+#include <type_traits>
+
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
 
@@ -81,32 +83,33 @@ bool wideLoneStepsAvailable() {
 #endif
 }
 
-void runBatch(bool wide, IntegratorType type, const LaneBody<Lanes>& b, const StepTerms& terms, double h,
-              std::int64_t steps, std::size_t count, LaneState<Lanes>& y, std::int64_t* done, bool* running) {
+namespace {
+// f(std::integral_constant<IntegratorType, kType>{}) for the method with a lane kernel that `type` names.
+template <class F>
+void withMethod(IntegratorType type, F&& f) {
   switch (type) {
     case IntegratorType::kRk4:
-      runBatchOf<IntegratorType::kRk4>(wide, b, terms, h, steps, count, y, done, running);
+      f(std::integral_constant<IntegratorType, IntegratorType::kRk4>{});
       return;
     case IntegratorType::kSemiImplicitEuler:
-      runBatchOf<IntegratorType::kSemiImplicitEuler>(wide, b, terms, h, steps, count, y, done, running);
+      f(std::integral_constant<IntegratorType, IntegratorType::kSemiImplicitEuler>{});
       return;
     default:
-      runBatchOf<IntegratorType::kExplicitEuler>(wide, b, terms, h, steps, count, y, done, running);
+      f(std::integral_constant<IntegratorType, IntegratorType::kExplicitEuler>{});
   }
+}
+}  // namespace
+
+void runBatch(bool wide, IntegratorType type, const LaneBody<Lanes>& b, const StepTerms& terms, double h,
+              std::int64_t steps, std::size_t count, LaneState<Lanes>& y, std::int64_t* done, bool* running) {
+  withMethod(type, [&](auto method) {
+    runBatchOf<decltype(method)::value>(wide, b, terms, h, steps, count, y, done, running);
+  });
 }
 
 void runLone(bool wide, IntegratorType type, const LaneBody<double>& b, const StepTerms& terms, double h,
              std::int64_t steps, LaneState<double>& y, std::int64_t* done, bool* running) {
-  switch (type) {
-    case IntegratorType::kRk4:
-      runLoneOf<IntegratorType::kRk4>(wide, b, terms, h, steps, y, done, running);
-      return;
-    case IntegratorType::kSemiImplicitEuler:
-      runLoneOf<IntegratorType::kSemiImplicitEuler>(wide, b, terms, h, steps, y, done, running);
-      return;
-    default:
-      runLoneOf<IntegratorType::kExplicitEuler>(wide, b, terms, h, steps, y, done, running);
-  }
+  withMethod(type, [&](auto method) { runLoneOf<decltype(method)::value>(wide, b, terms, h, steps, y, done, running); });
 }
 
 }  // namespace integrators
