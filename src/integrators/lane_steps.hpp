@@ -632,16 +632,18 @@ __attribute__((noinline, flatten, RIGID_BODY_LONE_WIDE_TARGET)) bool laneStepWid
   return laneStepOf<kType>(model, terms, input, h, state);
 }
 #endif
-/// runLanes for one body, each method a function of its own (runLone, in wide_lanes.cpp). Here rather than
-/// there, so that semi-implicit Euler's is compiled in lone_semi_implicit_euler.cpp, as its lone step is.
-template <IntegratorType kType>
-__attribute__((noinline)) void runLonePortable(const LaneBody<double>& b, const StepTerms& terms, double h,
-                                               std::int64_t steps, LaneState<double>& y, std::int64_t* done,
-                                               bool* running) {
-  runLanes(kType, b, terms, h, steps, 1, y, done, running);
+/// runLanes in the build's own instruction set, each method (and lane type) a function of its own: inlined
+/// together into one, each method's register allocation followed the others' code (an edit to the lone rk4
+/// step moved the batched semi-implicit Euler step by 10-15 %; rk4's batches ran 15-30 % faster apart,
+/// docs/performance.md). runBatch and runLone (wide_lanes.cpp) call it. Here rather than there, so that
+/// semi-implicit Euler's lone loop is compiled in lone_semi_implicit_euler.cpp, as its lone step is.
+template <IntegratorType kType, class T>
+__attribute__((noinline)) void runLanesOf(const LaneBody<T>& b, const StepTerms& terms, double h, std::int64_t steps,
+                                          std::size_t count, LaneState<T>& y, std::int64_t* done, bool* running) {
+  runLanes(kType, b, terms, h, steps, count, y, done, running);
 }
 #ifdef RIGID_BODY_WIDE_LONE_STEPS
-/// runLonePortable in AVX-512's instructions, as laneStepWide.
+/// runLanesOf for one body in AVX-512's instructions, as laneStepWide.
 template <IntegratorType kType>
 __attribute__((noinline, RIGID_BODY_LONE_WIDE_TARGET)) void runLoneWide(const LaneBody<double>& b, const StepTerms& terms,
                                                               double h, std::int64_t steps, LaneState<double>& y,
@@ -656,10 +658,11 @@ bool wideLoneStepsAvailable();
 // Compiled in lone_semi_implicit_euler.cpp, with options of its own.
 extern template bool laneStep<IntegratorType::kSemiImplicitEuler>(const Model& model, const StepTerms& terms,
                                                                    const AppliedWrench& input, double h, State& state);
-extern template void runLonePortable<IntegratorType::kSemiImplicitEuler>(const LaneBody<double>& b,
-                                                                         const StepTerms& terms, double h,
-                                                                         std::int64_t steps, LaneState<double>& y,
-                                                                         std::int64_t* done, bool* running);
+extern template void runLanesOf<IntegratorType::kSemiImplicitEuler, double>(const LaneBody<double>& b,
+                                                                            const StepTerms& terms, double h,
+                                                                            std::int64_t steps, std::size_t count,
+                                                                            LaneState<double>& y,
+                                                                            std::int64_t* done, bool* running);
 #ifdef RIGID_BODY_WIDE_LONE_STEPS
 extern template bool laneStepWide<IntegratorType::kSemiImplicitEuler>(const Model& model, const StepTerms& terms,
                                                                        const AppliedWrench& input, double h,

@@ -10,9 +10,11 @@ namespace integrators {
 
 template bool laneStep<IntegratorType::kSemiImplicitEuler>(const Model& model, const StepTerms& terms,
                                                             const AppliedWrench& input, double h, State& state);
-template void runLonePortable<IntegratorType::kSemiImplicitEuler>(const LaneBody<double>& b, const StepTerms& terms,
-                                                                  double h, std::int64_t steps, LaneState<double>& y,
-                                                                  std::int64_t* done, bool* running);
+template void runLanesOf<IntegratorType::kSemiImplicitEuler, double>(const LaneBody<double>& b,
+                                                                     const StepTerms& terms, double h,
+                                                                     std::int64_t steps, std::size_t count,
+                                                                     LaneState<double>& y, std::int64_t* done,
+                                                                     bool* running);
 #ifdef RIGID_BODY_WIDE_LONE_STEPS
 template bool laneStepWide<IntegratorType::kSemiImplicitEuler>(const Model& model, const StepTerms& terms,
                                                                 const AppliedWrench& input, double h, State& state);

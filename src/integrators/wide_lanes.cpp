@@ -15,16 +15,7 @@ namespace integrators {
 
 namespace {
 
-// Each method's loop is a function of its own: inlined together into one, each method's register allocation
-// followed the others' code (an edit to the lone rk4 step moved the batched semi-implicit Euler step by 10-15 %;
-// rk4's batches ran 15-30 % faster apart, docs/performance.md).
-template <IntegratorType kType>
-__attribute__((noinline)) void runBatchPortable(const LaneBody<Lanes>& b, const StepTerms& terms, double h,
-                                                std::int64_t steps, std::size_t count, LaneState<Lanes>& y,
-                                                std::int64_t* done, bool* running) {
-  runLanes(kType, b, terms, h, steps, count, y, done, running);
-}
-
+// Each method's loop a function of its own, as runLanesOf (lane_steps.hpp) says why.
 #if defined(__x86_64__) && !defined(__AVX__)
 #define RIGID_BODY_WIDE_LANES 1
 template <IntegratorType kType>
@@ -45,7 +36,7 @@ void runBatchOf(bool wide, const LaneBody<Lanes>& b, const StepTerms& terms, dou
   }
 #endif
   (void)wide;
-  runBatchPortable<kType>(b, terms, h, steps, count, y, done, running);  // the build's own instruction set
+  runLanesOf<kType>(b, terms, h, steps, count, y, done, running);  // the build's own instruction set
 }
 
 template <IntegratorType kType>
@@ -60,7 +51,7 @@ void runLoneOf(bool wide, const LaneBody<double>& b, const StepTerms& terms, dou
   }
 #endif
   (void)wide;
-  runLonePortable<kType>(b, terms, h, steps, y, done, running);
+  runLanesOf<kType>(b, terms, h, steps, 1, y, done, running);
 }
 
 }  // namespace
