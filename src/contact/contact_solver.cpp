@@ -62,8 +62,9 @@ void prepareContacts(std::vector<SolverContact>& contacts, std::vector<SolverBod
   }
 }
 
-void solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options) {
-  for (int iteration = 0; iteration < options.iterations; ++iteration) {
+bool solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options) {
+  bool converged = false;
+  for (int iteration = 0; iteration < options.iterations && !converged; ++iteration) {
     double largest_change = 0.0, largest_impulse = 0.0;
     for (SolverContact& c : contacts) {
       SolverBody& a = bodies[c.a];
@@ -81,6 +82,7 @@ void solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBod
       const Eigen::Vector3d dv_t = a.v - b.v;
       const Eigen::Vector2d slip(c.t1.dot(dv_t) + c.cross_a.col(1).dot(a.w) - c.cross_b.col(1).dot(b.w),
                                  c.t2.dot(dv_t) + c.cross_a.col(2).dot(a.w) - c.cross_b.col(2).dot(b.w));
+      c.slip_squared = slip.squaredNorm();
       Eigen::Vector2d friction = c.friction_impulse - c.tangent_mass * slip;
       const double limit = c.friction * c.normal_impulse;
       if (friction.squaredNorm() > limit * limit) {
@@ -94,7 +96,7 @@ void solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBod
       largest_change = std::max({largest_change, std::abs(dn), df.lpNorm<Eigen::Infinity>()});
       largest_impulse = std::max({largest_impulse, c.normal_impulse, c.friction_impulse.lpNorm<Eigen::Infinity>()});
     }
-    if (largest_change <= 1e-14 * largest_impulse) break;  // converged to rounding
+    converged = largest_change <= 1e-14 * largest_impulse;  // to rounding
   }
   // The momentum changes, summed once from the final impulses (not per update in the loop).
   for (SolverBody& body : bodies) body.dP.setZero(), body.dL.setZero();
@@ -104,6 +106,7 @@ void solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBod
     bodies[c.a].dP += impulse, bodies[c.a].dL += c.cross_a * coefficients;
     bodies[c.b].dP -= impulse, bodies[c.b].dL -= c.cross_b * coefficients;
   }
+  return converged;
 }
 
 void projectPositions(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, int iterations,
@@ -117,11 +120,22 @@ void projectPositions(std::vector<SolverContact>& contacts, std::vector<SolverBo
       const double separation = c.separation + c.n.dot(a.dx - b.dx) + c.cross_a.col(0).dot(a.dtheta) -
                                 c.cross_b.col(0).dot(b.dtheta);
       const double error = separation + slop;
-      if (error >= 0.0) continue;
-      deepest = std::min(deepest, error);
-      const double push = -correction * error * c.normal_mass;
-      a.dx += a.inverse_mass * push * c.n, a.dtheta += push * c.response_a.col(0);
-      b.dx -= b.inverse_mass * push * c.n, b.dtheta -= push * c.response_b.col(0);
+      if (error < 0.0) {
+        deepest = std::min(deepest, error);
+        const double push = -correction * error * c.normal_mass;
+        a.dx += a.inverse_mass * push * c.n, a.dtheta += push * c.response_a.col(0);
+        b.dx -= b.inverse_mass * push * c.n, b.dtheta -= push * c.response_b.col(0);
+      }
+      if (!c.anchored) continue;
+      // The anchors' tangential gap now, to first order as the separation; a push p along (t1, t2) changes
+      // it by K_t p, so p = −correction K_t⁻¹ gap removes that fraction of it.
+      const Eigen::Vector2d gap(
+          c.anchor_gap.x() + c.t1.dot(a.dx - b.dx) + c.cross_a.col(1).dot(a.dtheta) - c.cross_b.col(1).dot(b.dtheta),
+          c.anchor_gap.y() + c.t2.dot(a.dx - b.dx) + c.cross_a.col(2).dot(a.dtheta) - c.cross_b.col(2).dot(b.dtheta));
+      const Eigen::Vector2d push = -correction * (c.tangent_mass * gap);
+      const Eigen::Vector3d linear = push.x() * c.t1 + push.y() * c.t2;
+      a.dx += a.inverse_mass * linear, a.dtheta += c.response_a.col(1) * push.x() + c.response_a.col(2) * push.y();
+      b.dx -= b.inverse_mass * linear, b.dtheta -= c.response_b.col(1) * push.x() + c.response_b.col(2) * push.y();
     }
     if (deepest == 0.0) break;
   }

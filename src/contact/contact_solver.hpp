@@ -43,6 +43,11 @@ struct SolverContact {
   double friction = 0.0;       ///< μ
   double restitution = 0.0;    ///< e
   double target_speed = 0.0;   ///< the normal relative speed the solve aims at (≥ it)
+  /// A sticking contact's anchors: the two points where it began to stick, one on each body, apart by
+  /// anchor_gap in the tangent plane (t1, t2) when detected; the position projection closes that gap.
+  bool anchored = false;
+  Eigen::Vector2d anchor_gap = Eigen::Vector2d::Zero();  ///< [m]
+  double slip_squared = 0.0;  ///< |tangential relative velocity|² before the last sweep's friction update [m²/s²]
   double normal_impulse = 0.0;                                 ///< accumulated [N s], ≥ 0
   Eigen::Vector2d friction_impulse = Eigen::Vector2d::Zero();  ///< accumulated [N s], |·| ≤ μ normal_impulse
   // Made by prepareContacts: r × d and I⁻¹(r × d) for d = n, t1, t2 (columns), and the effective masses.
@@ -70,12 +75,15 @@ Eigen::Vector3d relativeVelocity(const SolverContact& contact, const std::vector
 void prepareContacts(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options);
 
 /// Sequential impulses until every contact meets its target within rounding or the iterations run out;
-/// then each body's dP and dL are summed from the contacts' impulses.
-void solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options);
+/// then each body's dP and dL are summed from the contacts' impulses. Returns whether it converged (a
+/// sweep changed no impulse by more than rounding) before the iterations ran out.
+bool solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options);
 
 /// Position projection: moves bodies apart along the normals until no penetration beyond `slop` remains
-/// (a fraction `correction` of it per sweep). The separations count the bodies' dx and dtheta as they stand
-/// (what the step has already moved them since detection) to first order.
+/// (a fraction `correction` of it per sweep), and brings an anchored contact's anchors together in the
+/// tangent plane by the same fraction (the slip that unconverged friction impulses leave would otherwise
+/// add up over the steps). The separations count the bodies' dx and dtheta as they stand (what the step
+/// has already moved them since detection) to first order.
 void projectPositions(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, int iterations,
                       double slop, double correction);
 

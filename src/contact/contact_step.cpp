@@ -30,8 +30,22 @@ constexpr double kContactRange = 1e6;
 // A point found this close to where a point of the same pair was last step (on the body) inherits its
 // impulses as the solver's first guess [m].
 constexpr double kWarmStartMatch = 2e-3;
+// A contact sticks (and keeps its anchors) only if its slip in the solve's last sweep would move it by less
+// than this fraction of the penetration slop in the step: a sliding box's corner can end a solve with its
+// friction impulse inside the disc, and anchored it would be held back (its stop distance 10 % short).
+constexpr double kStickingSlip = 0.1;
+// A point starts to stick only with its friction impulse within this fraction of the disc's radius μ fₙ: a
+// block starting to slide from rest has a slow slip for its first steps, and the corners an unconverged solve
+// leaves just inside the disc were anchored (its travel down an incline 4.7e-4 short at h = 0.25 ms with 5
+// sweeps, against 1.4e-5).
+constexpr double kStartingFriction = 0.5;
 // A colliding body not yet in the solver's list.
 constexpr std::size_t kUnassigned = std::numeric_limits<std::size_t>::max();
+
+// Whether a shape can roll: its contact point then moves over its surface (sphere, cylinder, capsule).
+bool isCurved(ShapeType type) {
+  return type == ShapeType::kSphere || type == ShapeType::kCylinder || type == ShapeType::kCapsule;
+}
 
 // c in Δx = c h² a: how far one step of the method moves a body under a constant acceleration a, from rest.
 // Exact motion, and every method of order ≥ 2, gives ½ (Σ bᵢcᵢ = ½ for a Runge–Kutta method); explicit Euler
@@ -70,11 +84,13 @@ ContactStep::ContactStep(const ContactSetup& setup, const std::vector<std::size_
     poses.push_back(X_WB);
     shapes.push_back(*setup.bodies[body]);
     materials_.push_back(shapes.back().material);
+    curved_.push_back(isCurved(shapes.back().type));
     names_.push_back(shapes.back().name.empty() ? "body " + std::to_string(body) : shapes.back().name);
     inner_radius_.push_back(innerRadius(shapes.back()));
   }
   for (std::size_t i = 0; i < setup.environment.size(); ++i) {
     materials_.push_back(setup.environment[i].material);
+    curved_.push_back(isCurved(setup.environment[i].type));
     names_.push_back(setup.environment[i].name.empty() ? "environment shape " + std::to_string(i)
                                                        : setup.environment[i].name);
   }
@@ -306,6 +322,7 @@ bool ContactStep::resolveImpact(SceneBodies& bodies, const Candidate& c, double 
   const double deepest = world_->pairDistance(c.a, c.b, kImpactPointTolerance, &pair_points_);
   solver_contacts_.clear();
   solver_points_.clear();
+  solver_anchors_.clear();
   startSolverLists();
   for (const ContactPoint& point : pair_points_) {
     if (point.distance <= deepest + kImpactPointTolerance) addContact(point, bodies, false);
@@ -388,21 +405,49 @@ void ContactStep::addContact(const ContactPoint& point, const SceneBodies& bodie
   c.friction = material.friction;
   // A pair that was already touching rests or slides: it does not bounce again.
   c.restitution = resting && wasTouching(pairKey(point.a, point.b)) ? 0.0 : material.restitution;
-  if (resting && wasTouching(pairKey(point.a, point.b))) warmStart(c, point, bodies);
+  const WarmPoint* last = resting && wasTouching(pairKey(point.a, point.b)) ? warmStart(c, point, bodies) : nullptr;
+  // A point that stuck last step keeps the anchors where it began to stick, unless one of them has left the
+  // point by more than the warm-start match.
+  std::pair<Eigen::Vector3d, Eigen::Vector3d> anchors(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+  if (last != nullptr && last->anchored) {
+    const bool lower_a = point.a < point.b;
+    anchors = {lower_a ? last->anchor_lo : last->anchor_hi, lower_a ? last->anchor_hi : last->anchor_lo};
+    const Eigen::Vector3d A = inWorld(point.a, anchors.first, bodies);
+    const Eigen::Vector3d B = inWorld(point.b, anchors.second, bodies);
+    if ((A - point.on_a).squaredNorm() < kWarmStartMatch * kWarmStartMatch &&
+        (B - point.on_b).squaredNorm() < kWarmStartMatch * kWarmStartMatch) {
+      c.anchored = true;
+      c.anchor_gap = Eigen::Vector2d(c.t1.dot(A - B), c.t2.dot(A - B));
+    }
+  }
   solver_contacts_.push_back(c);
   solver_points_.push_back(&point);
+  solver_anchors_.push_back(anchors);
+}
+
+Eigen::Vector3d ContactStep::inObjectFrame(std::size_t object, const Eigen::Vector3d& p_W,
+                                           const SceneBodies& bodies) const {
+  if (!world_->isBody(object)) return p_W;
+  const State& state = bodies.states[colliders_[object]];
+  return state.q_WB.conjugate() * (p_W - state.p_WB);
+}
+
+Eigen::Vector3d ContactStep::inWorld(std::size_t object, const Eigen::Vector3d& local, const SceneBodies& bodies) const {
+  if (!world_->isBody(object)) return local;
+  const State& state = bodies.states[colliders_[object]];
+  return state.p_WB + state.q_WB * local;
 }
 
 Eigen::Vector3d ContactStep::localPoint(const ContactPoint& point, const SceneBodies& bodies) const {
-  const bool on_a = world_->isBody(point.a);
-  const State& state = bodies.states[colliders_[on_a ? point.a : point.b]];
-  return state.q_WB.conjugate() * ((on_a ? point.on_a : point.on_b) - state.p_WB);
+  return world_->isBody(point.a) ? inObjectFrame(point.a, point.on_a, bodies) : inObjectFrame(point.b, point.on_b, bodies);
 }
 
-void ContactStep::warmStart(SolverContact& c, const ContactPoint& point, const SceneBodies& bodies) const {
-  const WarmPoint probe{pairKey(point.a, point.b), -1, Eigen::Vector3d::Zero(), 0.0, Eigen::Vector3d::Zero()};
+const ContactStep::WarmPoint* ContactStep::warmStart(SolverContact& c, const ContactPoint& point,
+                                                     const SceneBodies& bodies) const {
+  WarmPoint probe{};
+  probe.key = pairKey(point.a, point.b);
   const auto range = std::equal_range(warm_.begin(), warm_.end(), probe);
-  if (range.first == range.second) return;
+  if (range.first == range.second) return nullptr;
   const WarmPoint* best = nullptr;
   if (point.feature >= 0) {  // a half-space contact: the same corner of the same body
     for (auto it = range.first; it != range.second && best == nullptr; ++it) {
@@ -416,16 +461,18 @@ void ContactStep::warmStart(SolverContact& c, const ContactPoint& point, const S
       if (distance < best_distance) best = &*it, best_distance = distance;
     }
   }
-  if (best == nullptr) return;
+  if (best == nullptr) return nullptr;
   // The pair's order may differ from last step's: impulses are stored as acting on the pair's lower object.
   const double sign = point.a < point.b ? 1.0 : -1.0;
   c.normal_impulse = best->normal_impulse;
   c.friction_impulse = sign * Eigen::Vector2d(c.t1.dot(best->friction_impulse_W), c.t2.dot(best->friction_impulse_W));
+  return best;
 }
 
 void ContactStep::solveResting(SceneBodies& bodies, double h) {
   solver_contacts_.clear();
   solver_points_.clear();
+  solver_anchors_.clear();
   startSolverLists();
   for (const ContactPoint& point : points_) {
     const bool touching = wasTouching(pairKey(point.a, point.b));
@@ -451,7 +498,7 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
   options.restitution_threshold = settings_.restitution_threshold;
   options.dt = h;
   prepareContacts(solver_contacts_, solver_bodies_, options);
-  solveVelocities(solver_contacts_, solver_bodies_, options);
+  const bool converged = solveVelocities(solver_contacts_, solver_bodies_, options);
   // The impulses stand for a contact force constant over the step: besides the momenta they move the body
   // by c h Δv (and turn it by c h Δω), as the integrator would have moved it under that force; then the
   // projection.
@@ -476,9 +523,30 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
     const SolverContact& c = solver_contacts_[i];
     const ContactPoint& point = *solver_points_[i];
     const Eigen::Vector3d friction = c.friction_impulse.x() * c.t1 + c.friction_impulse.y() * c.t2;
+    // Anchored next step (docs/contact.md, step 6), only after a solve that did not converge and only for a
+    // point that does not slide (its slip in the solve's last sweep moves it by less than kStickingSlip of
+    // the slop in the step). One that was anchored keeps its anchors while its friction stays inside the disc
+    // (or it is not pressed for a step); one that starts to stick (pressed, its friction within
+    // kStartingFriction of the disc's radius) anchors where it is now, on each body as the body now stands
+    // (the anchors then coincide in the tangent plane). Never on a curved surface: a rolling body's contact
+    // point moves over its surface while its material points do not slip, and anchors left behind would hold
+    // it back (a sphere rolling down an incline lost 1.5e-6 of its acceleration at h = 0.25 ms).
+    const double slip_limit = kStickingSlip * settings_.penetration_slop / h;
+    const bool slow = c.slip_squared < slip_limit * slip_limit;
+    const double limit = c.friction * c.normal_impulse, f2 = c.friction_impulse.squaredNorm();
+    const bool starts = !c.anchored && !curved_[point.a] && !curved_[point.b] && c.normal_impulse > 0.0 &&
+                        f2 < kStartingFriction * kStartingFriction * limit * limit;
+    const bool keeps = c.anchored && (c.normal_impulse == 0.0 || f2 < limit * limit);
+    const bool sticking = !converged && slow && (starts || keeps);
+    std::pair<Eigen::Vector3d, Eigen::Vector3d> anchors = solver_anchors_[i];
+    if (sticking && starts) {
+      anchors = {inObjectFrame(point.a, point.on_a, bodies), inObjectFrame(point.b, point.on_b, bodies)};
+    }
+    const bool lower_a = point.a < point.b;
     warm_next_.push_back({pairKey(point.a, point.b), point.feature,
                           point.feature >= 0 ? Eigen::Vector3d::Zero() : localPoint(point, bodies), c.normal_impulse,
-                          (point.a < point.b ? 1.0 : -1.0) * friction});
+                          (lower_a ? 1.0 : -1.0) * friction, sticking, lower_a ? anchors.first : anchors.second,
+                          lower_a ? anchors.second : anchors.first});
     if (!recording_) continue;
     const double depth = std::max(0.0, -point.distance);
     if (world_->isBody(point.a)) {

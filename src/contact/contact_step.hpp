@@ -78,6 +78,7 @@ class ContactStep {
   std::unique_ptr<CollisionWorld> world_;
   std::vector<std::size_t> colliders_;
   std::vector<ContactMaterial> materials_;  // per collision object
+  std::vector<char> curved_;                // per collision object: a sphere, cylinder or capsule (it can roll)
   std::vector<std::string> names_;          // per collision object, for messages
   std::vector<double> inner_radius_;        // per colliding body
   std::vector<char> outside_;               // per colliding body: beyond the contact range
@@ -106,11 +107,21 @@ class ContactStep {
     Eigen::Vector3d local;
     double normal_impulse;
     Eigen::Vector3d friction_impulse_W;
+    // A sticking point's anchors (docs/contact.md, step 6) on the pair's lower and higher object, each in
+    // that object's frame (the world's for the environment); anchored is false for a point that slid, and
+    // after a step whose solve converged.
+    bool anchored;
+    Eigen::Vector3d anchor_lo, anchor_hi;
     bool operator<(const WarmPoint& other) const { return key < other.key; }
   };
   Eigen::Vector3d localPoint(const ContactPoint& point, const SceneBodies& bodies) const;
-  void warmStart(SolverContact& contact, const ContactPoint& point, const SceneBodies& bodies) const;
+  const WarmPoint* warmStart(SolverContact& contact, const ContactPoint& point, const SceneBodies& bodies) const;
+  // A point between the world and a collision object's own frame (the environment's is the world's).
+  Eigen::Vector3d inObjectFrame(std::size_t object, const Eigen::Vector3d& p_W, const SceneBodies& bodies) const;
+  Eigen::Vector3d inWorld(std::size_t object, const Eigen::Vector3d& local, const SceneBodies& bodies) const;
   std::vector<WarmPoint> warm_, warm_next_;
+  // Per solver contact: the anchors it carries on a and on b (in those objects' frames), if anchored.
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> solver_anchors_;
 };
 
 }  // namespace contact

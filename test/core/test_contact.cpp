@@ -45,6 +45,20 @@ struct Incline {
   Eigen::Vector3d downSlope() const { return q() * Eigen::Vector3d::UnitX(); }
 };
 
+// `height` boxes (0.3 × 0.3 × 0.2 m, 1 kg, μ = 0.5) stacked on the ground, touching, at h = 1 ms.
+Scene boxStack(int height, IntegratorType type) {
+  const Eigen::Vector3d size(0.3, 0.3, 0.2);
+  ContactSetup setup;
+  setup.environment = {plane(Eigen::Vector3d::UnitZ(), 0.0, 0.5)};
+  std::vector<BodyDefinition> boxes;
+  for (int i = 0; i < height; ++i) {
+    boxes.push_back(body(MassProperties::box(1.0, size), Eigen::Vector3d(0, 0, 0.1 + 0.2 * i),
+                         Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero(), kDown));
+    setup.bodies.push_back(shapeOf(ShapeType::kBox, size, 0.5, 0.0));
+  }
+  return Scene(boxes, type, 1e-3, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+}
+
 }  // namespace
 
 TEST(Contact, BouncingBallMeetsTheGroundAtSqrt2hOverGAndReboundsToE2nH) {
@@ -225,21 +239,38 @@ TEST(Contact, ABoxRestsOnTheGroundWithoutSinkingDriftingOrGainingEnergy) {
 }
 
 TEST(Contact, AStackOfTenBoxesStandsForTenSeconds) {
-  const Eigen::Vector3d size(0.3, 0.3, 0.2);
-  ContactSetup setup;
-  setup.environment = {plane(Eigen::Vector3d::UnitZ(), 0.0, 0.5)};
-  std::vector<BodyDefinition> boxes;
-  for (int i = 0; i < 10; ++i) {
-    boxes.push_back(body(MassProperties::box(1.0, size), Eigen::Vector3d(0, 0, 0.1 + 0.2 * i),
-                         Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero(), kDown));
-    setup.bodies.push_back(shapeOf(ShapeType::kBox, size, 0.5, 0.0));
-  }
-  Scene scene(boxes, IntegratorType::kRk4, 1e-3, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+  Scene scene = boxStack(10, IntegratorType::kRk4);
   scene.step(10000);
   for (std::size_t i = 0; i < 10; ++i) {
     EXPECT_LT((scene.state(i).p_WB - scene.initialState(i).p_WB).norm(), 2e-3) << "box " << i;
   }
   EXPECT_LE(scene.contactStatistics().max_penetration, 1e-3);
+}
+
+// Static friction holds a point where it began to stick. A velocity-level solve leaves a little slip at
+// each interface of a tall stack every step, and without a memory of where the points stuck those slips add
+// up (the stack of 20 walks its top box ~1 cm in 10 s); the friction anchors take them back. Each
+// interface's slip is the horizontal offset of a box's bottom-face centre from the top-face centre of the box
+// below (the ground's point under the bottom box for the first), which the boxes' tilts move only to second
+// order; it must stay within the penetration slop, the tolerance the normal direction has.
+TEST(Contact, TheBoxesOfAStackOfTwentyDoNotSlipOnEachOther) {
+  const Eigen::Vector3d half_height(0.0, 0.0, 0.1);
+  const double slop = ContactSettings().penetration_slop;
+  for (IntegratorType type : {IntegratorType::kSemiImplicitEuler, IntegratorType::kRk4}) {
+    Scene scene = boxStack(20, type);
+    double slip = 0.0;
+    for (int second = 0; second < 10; ++second) {
+      scene.step(1000);
+      Eigen::Vector3d below = Eigen::Vector3d::Zero();  // the top-face centre of what is below (the ground's origin)
+      for (std::size_t i = 0; i < 20; ++i) {
+        const State& box = scene.state(i);
+        const Eigen::Vector3d bottom = box.p_WB - box.q_WB * half_height;
+        slip = std::max(slip, (bottom - below).head<2>().norm());
+        below = box.p_WB + box.q_WB * half_height;
+      }
+    }
+    EXPECT_LT(slip, slop) << integratorName(type);
+  }
 }
 
 TEST(Contact, AFastSphereDoesNotTunnelThroughAThinPlate) {
