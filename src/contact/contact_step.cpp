@@ -530,7 +530,7 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
     // kStartingFriction of the disc's radius) anchors where it is now, on each body as the body now stands
     // (the anchors then coincide in the tangent plane). Never on a curved surface: a rolling body's contact
     // point moves over its surface while its material points do not slip, and anchors left behind would hold
-    // it back (a sphere rolling down an incline lost 1.5e-6 of its acceleration at h = 0.25 ms).
+    // it back (a sphere rolling down an incline lost 1.5e-6 of its distance in 1 s at h = 0.25 ms).
     const double slip_limit = kStickingSlip * settings_.penetration_slop / h;
     const bool slow = c.slip_squared < slip_limit * slip_limit;
     const double limit = c.friction * c.normal_impulse, f2 = c.friction_impulse.squaredNorm();
