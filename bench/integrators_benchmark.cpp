@@ -5,7 +5,7 @@
 // on a sphere; the torque-free body is the asymmetric scene of the tests; the gravity-only body falls without
 // spin or input. Each case runs twice: "all_terms" evaluates every term of the step (StepTerms::all()), and
 // "assembled" only those the scene declares (assembleTerms), so the ratio is what leaving out saves.
-// Each iteration is one step of 1 ms. rk4 and semi-implicit Euler run once more as ".../baseline_isa", with
+// Each iteration is one step of 1 ms. rk4 and the two Eulers run once more as ".../baseline_isa", with
 // IntegratorSettings::wide_instructions off: the step in the build's own instruction set where the default
 // picks AVX-512 at run time (the two compared: docs/performance.md).
 #include <benchmark/benchmark.h>
@@ -101,7 +101,8 @@ int registerAll() {
   for (const auto& [name, run] : cases) {
     for (IntegratorType type : allIntegrators()) {
       for (Terms terms : {Terms::kAll, Terms::kAssembled, Terms::kAssembledBaselineIsa}) {
-        const bool wide = type == IntegratorType::kRk4 || type == IntegratorType::kSemiImplicitEuler;
+        const bool wide = type == IntegratorType::kRk4 || type == IntegratorType::kSemiImplicitEuler ||
+                          type == IntegratorType::kExplicitEuler;
         if (terms == Terms::kAssembledBaselineIsa && !wide) continue;
         const char* suffix = terms == Terms::kAll         ? "/all_terms"
                              : terms == Terms::kAssembled ? "/assembled"

@@ -115,9 +115,7 @@ StepStatus Integrator::doStep(const Model& model, const StepTerms& terms, const 
   switch (type_) {
     case IntegratorType::kExplicitEuler:
       statistics_.rhs_evaluations += laneRhsEvaluations(type_);
-      // In the build's own instruction set: its step measured slower in the wide one.
-      return laneStep<IntegratorType::kExplicitEuler>(model, terms, input, h, state) ? StepStatus::kOk
-                                                                                     : StepStatus::kNonFinite;
+      return loneStep<IntegratorType::kExplicitEuler>(wide_, model, terms, input, h, state);
     case IntegratorType::kSemiImplicitEuler:
       statistics_.rhs_evaluations += laneRhsEvaluations(type_);
       return loneStep<IntegratorType::kSemiImplicitEuler>(wide_, model, terms, input, h, state);

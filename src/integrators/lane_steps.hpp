@@ -619,8 +619,9 @@ __attribute__((noinline)) bool laneStep(const Model& model, const StepTerms& ter
 /// laneStep compiled for AVX-512 (`flatten`: the whole step inlined into it, Eigen's loads and stores too),
 /// picked at run time by Integrator where wideLoneStepsAvailable(): the same scalar IEEE operations in the same
 /// order, so the same bits, in three-operand instructions with 32 registers instead of SSE2's two-operand
-/// ones with 16: fewer copies and spills of RK4's ~50 live values. Used for rk4 and semi-implicit Euler;
-/// explicit Euler's step measured slower so (docs/performance.md). Without GCC's straight-line vectoriser:
+/// ones with 16: fewer copies and spills of RK4's ~50 live values; used for all three methods (explicit
+/// Euler's step, once measured slower so, is 12 % faster, docs/performance.md). Without GCC's straight-line
+/// vectoriser:
 /// "avx512f" brings fused multiply-add instructions, and GCC 12's vectoriser fuses a product into a pair of a
 /// sum and a difference (vfmaddsub) in spite of -ffp-contract=off (it did so in the native build), which
 /// would round apart from the batched step; without it the wide rk4 step also measured ~3 ns faster.
