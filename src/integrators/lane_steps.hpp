@@ -620,7 +620,7 @@ __attribute__((noinline)) bool laneStep(const Model& model, const StepTerms& ter
 /// picked at run time by Integrator where wideLoneStepsAvailable(): the same scalar IEEE operations in the same
 /// order, so the same bits, in three-operand instructions with 32 registers instead of SSE2's two-operand
 /// ones with 16: fewer copies and spills of RK4's ~50 live values; used for all three methods (explicit
-/// Euler's step, once measured slower so, is 12 % faster, docs/performance.md). Without GCC's straight-line
+/// Euler's step, once measured slower so, is 12-20 % faster, docs/performance.md). Without GCC's straight-line
 /// vectoriser:
 /// "avx512f" brings fused multiply-add instructions, and GCC 12's vectoriser fuses a product into a pair of a
 /// sum and a difference (vfmaddsub) in spite of -ffp-contract=off (it did so in the native build), which
