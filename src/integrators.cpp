@@ -114,14 +114,12 @@ StepStatus Integrator::doStep(const Model& model, const StepTerms& terms, const 
                               State& state) {
   switch (type_) {
     case IntegratorType::kExplicitEuler:
-      statistics_.rhs_evaluations += laneRhsEvaluations(type_);
-      return loneStep<IntegratorType::kExplicitEuler>(wide_, model, terms, input, h, state);
     case IntegratorType::kSemiImplicitEuler:
-      statistics_.rhs_evaluations += laneRhsEvaluations(type_);
-      return loneStep<IntegratorType::kSemiImplicitEuler>(wide_, model, terms, input, h, state);
     case IntegratorType::kRk4:
       statistics_.rhs_evaluations += laneRhsEvaluations(type_);
-      return loneStep<IntegratorType::kRk4>(wide_, model, terms, input, h, state);
+      return withMethod(type_, [&](auto method) {
+        return loneStep<decltype(method)::value>(wide_, model, terms, input, h, state);
+      });
     case IntegratorType::kRkmk4: {
       Stages<4> stages;
       statistics_.rhs_evaluations += 4;

@@ -69,7 +69,7 @@ struct IntegratorSettings {
   /// implicit_midpoint: the Newton iteration stops when the update is below this, relative to |m|.
   double newton_tolerance = 1e-15;
   int newton_max_iterations = 20;  ///< implicit_midpoint: the cap, beyond which the step fails
-  /// rk4, semi_implicit_euler: step in AVX-512's instructions where the CPU has them, in the build's own
+  /// rk4 and the two Eulers: step in AVX-512's instructions where the CPU has them, in the build's own
   /// (x86-64: SSE2) where it has not or this is false. The same results bit for bit either way.
   bool wide_instructions = true;
 };

@@ -25,6 +25,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 
 #include "rigid_body_sim/dynamics.hpp"
 #include "rigid_body_sim/integrators.hpp"
@@ -519,6 +520,20 @@ RIGID_BODY_LANE_INLINE void acceptableLanes(const LaneState<T>& y, std::size_t l
 inline bool hasLaneStep(IntegratorType type) {
   return type == IntegratorType::kRk4 || type == IntegratorType::kExplicitEuler ||
          type == IntegratorType::kSemiImplicitEuler;
+}
+
+/// f(std::integral_constant<IntegratorType, kType>{}) for the method with a lane kernel that `type` names
+/// (hasLaneStep), and what f returns: each method's code a compile-time choice, the switch once.
+template <class F>
+decltype(auto) withMethod(IntegratorType type, F&& f) {
+  switch (type) {
+    case IntegratorType::kRk4:
+      return f(std::integral_constant<IntegratorType, IntegratorType::kRk4>{});
+    case IntegratorType::kSemiImplicitEuler:
+      return f(std::integral_constant<IntegratorType, IntegratorType::kSemiImplicitEuler>{});
+    default:
+      return f(std::integral_constant<IntegratorType, IntegratorType::kExplicitEuler>{});
+  }
 }
 
 /// f evaluations in one step of a method with a lane kernel: rk4's four stages, the Eulers' one.

@@ -5,8 +5,6 @@
 // built with -mavx would change Eigen's alignment and disagree with the rest).
 #include "lane_steps.hpp"
 
-#include <type_traits>
-
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
 
@@ -43,8 +41,6 @@ template <IntegratorType kType>
 void runLoneOf(bool wide, const LaneBody<double>& b, const StepTerms& terms, double h, std::int64_t steps,
                LaneState<double>& y, std::int64_t* done, bool* running) {
 #ifdef RIGID_BODY_WIDE_LONE_STEPS
-  // All three methods: explicit Euler's loop, unlike its single step (Integrator::step), measured as fast here
-  // as before it was a function of its own, and slower in SSE2 on its own (docs/performance.md).
   if (wide && wideLoneStepsAvailable()) {
     runLoneWide<kType>(b, terms, h, steps, y, done, running);
     return;
@@ -73,23 +69,6 @@ bool wideLoneStepsAvailable() {
   return false;
 #endif
 }
-
-namespace {
-// f(std::integral_constant<IntegratorType, kType>{}) for the method with a lane kernel that `type` names.
-template <class F>
-void withMethod(IntegratorType type, F&& f) {
-  switch (type) {
-    case IntegratorType::kRk4:
-      f(std::integral_constant<IntegratorType, IntegratorType::kRk4>{});
-      return;
-    case IntegratorType::kSemiImplicitEuler:
-      f(std::integral_constant<IntegratorType, IntegratorType::kSemiImplicitEuler>{});
-      return;
-    default:
-      f(std::integral_constant<IntegratorType, IntegratorType::kExplicitEuler>{});
-  }
-}
-}  // namespace
 
 void runBatch(bool wide, IntegratorType type, const LaneBody<Lanes>& b, const StepTerms& terms, double h,
               std::int64_t steps, std::size_t count, LaneState<Lanes>& y, std::int64_t* done, bool* running) {
