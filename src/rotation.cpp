@@ -4,24 +4,18 @@
 
 namespace rigid_body {
 
-namespace {
-// Below this angle sin(θ/2)/θ is replaced by its Taylor series 1/2 − θ²/48 + θ⁴/3840; the next term,
-// θ⁶/645120, is below 1e-16 relative there, so the series is exact to rounding.
-constexpr double kSmallAngle = 1e-3;
-}  // namespace
-
 Eigen::Quaterniond quaternionExp(const Eigen::Vector3d& rotation_vector) {
-  const double theta = rotation_vector.norm();
-  const double half = 0.5 * theta;
-  double sinc_half;  // sin(θ/2)/θ
-  if (theta < kSmallAngle) {
-    const double theta2 = theta * theta;
-    sinc_half = 0.5 - theta2 / 48.0 + theta2 * theta2 / 3840.0;
+  const double theta2 = rotation_vector.squaredNorm();
+  double cos_half, sinc_half;  // cos(θ/2), sin(θ/2)/θ
+  if (theta2 <= kHalfAngleSeriesLimit) {
+    halfAngleSeries(theta2, cos_half, sinc_half);
   } else {
-    sinc_half = std::sin(half) / theta;
+    const double theta = std::sqrt(theta2);
+    cos_half = std::cos(0.5 * theta);
+    sinc_half = std::sin(0.5 * theta) / theta;
   }
   const Eigen::Vector3d vec = sinc_half * rotation_vector;
-  return Eigen::Quaterniond(std::cos(half), vec.x(), vec.y(), vec.z());
+  return Eigen::Quaterniond(cos_half, vec.x(), vec.y(), vec.z());
 }
 
 Eigen::Vector3d quaternionLog(const Eigen::Quaterniond& q) {

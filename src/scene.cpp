@@ -178,7 +178,7 @@ void Scene::stepBodiesInLanes(std::size_t begin, std::size_t end, std::int64_t s
   constexpr std::size_t kOpenBatches = 4;
   struct Batch {
     StepTerms terms;
-    bool symmetric_top = false;  // semi-implicit Euler turns these by another branch
+    int turn_kind = 0;  // semi-implicit Euler's rotation branch (integrators::semiImplicitTurnKind)
     std::array<std::size_t, integrators::kLanes> bodies;
     std::size_t count = 0;
   };
@@ -194,9 +194,9 @@ void Scene::stepBodiesInLanes(std::size_t begin, std::size_t end, std::int64_t s
   };
   for (std::size_t body = begin; body < end; ++body) {
     if (records_[body].divergence != Divergence::kNone || collides(body)) continue;
-    const bool top = integrator_type_ == IntegratorType::kSemiImplicitEuler && integrators::isSymmetricTop(models_[body].mass);
+    const int turn_kind = integrators::semiImplicitTurnKind(integrator_type_, models_[body].mass);
     std::size_t k = 0;
-    while (k < used && (open[k].terms != terms_[body] || open[k].symmetric_top != top)) ++k;
+    while (k < used && (open[k].terms != terms_[body] || open[k].turn_kind != turn_kind)) ++k;
     if (k == used) {
       if (used < kOpenBatches) {
         ++used;
@@ -206,7 +206,7 @@ void Scene::stepBodiesInLanes(std::size_t begin, std::size_t end, std::int64_t s
         run(open[k]);
       }
       open[k].terms = terms_[body];
-      open[k].symmetric_top = top;
+      open[k].turn_kind = turn_kind;
     }
     Batch& batch = open[k];
     batch.bodies[batch.count++] = body;

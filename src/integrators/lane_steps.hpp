@@ -17,7 +17,8 @@
 //     is then the chain q → R → Rᵀ L → I⁻¹ → q̇, one matrix product shorter; the angular damping torque
 //     −c ω = R (−c ω_B) is turned into world axes together with the input's body torque, in one product.
 //   - the input's body force and body torque are turned into world axes only if some lane has one (b.body_force,
-//     b.body_torque): a wrench sent in the world frame costs no rotation.
+//     b.body_torque): a wrench sent in the world frame costs no rotation (and semi-implicit Euler turns the
+//     input's world torque into body axes only if some lane has one, b.world_torque).
 //   - a stage is built straight from the previous stage's rates (Y + a h k), with no copies of whole states.
 // Semi-implicit Euler: see laneSemiImplicitEulerStep.
 #pragma once
@@ -29,6 +30,7 @@
 
 #include "rigid_body_sim/dynamics.hpp"
 #include "rigid_body_sim/integrators.hpp"
+#include "rigid_body_sim/rotation.hpp"
 #include "methods.hpp"
 
 // Lanes pass by value between inline functions of this header only: GCC's note that the calling convention of
@@ -109,15 +111,16 @@ struct LaneBody {
   Vec<T> weight;                        // M g
   T linear_damping, angular_damping;
   Vec<T> force_W, torque_W, force_B, torque_B;  // the applied wrench: world and body parts
-  // Equal in every lane of a batch: whether any lane's input has a body force (a body torque). A lane without
-  // one then adds a turned zero, which changes no bit of a finite sum but a zero's sign.
-  bool body_force = false, body_torque = false;
+  // Equal in every lane of a batch: whether any lane's input has a body force (a body torque, a world torque).
+  // A lane without one then adds a turned zero, which changes no bit of a finite sum but a zero's sign.
+  bool body_force = false, body_torque = false, world_torque = false;
   // Semi-implicit Euler's free rotation: the inverse principal moments and the principal axes R_BP.
   Vec<T> inverse_principal;
   Mat<T> principal_axes;
-  // Equal in every lane of a batch: a symmetric top turns by its exact flow (splitting.cpp), one lane at a
-  // time, with these bodies' mass properties.
-  bool symmetric_top = false;
+  // Equal in every lane of a batch (semiImplicitTurnKind): a symmetric top turns by its exact flow
+  // (splitting.cpp), one lane at a time, with these bodies' mass properties; a body whose principal axes are
+  // its body axes (R_BP = 𝟙, a box) skips the turns into and out of them.
+  bool symmetric_top = false, principal_body = false;
   const MassProperties* mass[kLaneCount<T>];
 };
 
@@ -247,6 +250,35 @@ RIGID_BODY_LANE_INLINE Lanes inverseNorm(Lanes n) {
   return (d <= kNearUnitNorm) & (d >= -kNearUnitNorm) ? newton : exact;
 }
 
+// 1/√n for n = 1 + x near 1 by the series of (1 + x)^(-1/2), through x⁶, by Estrin's scheme (products of
+// depth four where a square root and a division take ~30 cycles): for |x| ≤ 2⁻⁸ the first term left out,
+// (429/2048)|x|⁷ ≤ 2⁻⁵⁸, is below the rounding of 1/√n itself; elsewhere 1/√n. For a step's rotation that
+// is not near unit: semi-implicit Euler's product of three Cayley turns has |r|² = 1 + O(h²|ω|²) (x ~ 1e-5 at
+// 1 ms and a few rad/s). Four lanes take the series alone when all four are in its range (the same value in
+// each lane as alone), else both forms and a select per lane.
+constexpr double kSeriesRange = 1.0 / (1 << 8);
+template <class T>
+RIGID_BODY_LANE_INLINE T inverseNormSeries(const T& x) {  // coefficients (−1)ᵏ C(2k, k)/4ᵏ, exact in binary
+  const T x2 = x * x;
+  return ((1.0 - 0.5 * x) + x2 * (0.375 - 0.3125 * x)) +
+         (x2 * x2) * ((0.2734375 - 0.24609375 * x) + 0.2255859375 * x2);
+}
+RIGID_BODY_LANE_INLINE double inverseNormNear(double n) {
+  const double x = n - 1.0;
+  if (std::fabs(x) <= kSeriesRange) return inverseNormSeries(x);
+  return 1.0 / std::sqrt(n);
+}
+RIGID_BODY_LANE_INLINE Lanes inverseNormNear(Lanes n) {
+  const Lanes x = n - 1.0;
+  const auto near = (x <= kSeriesRange) & (x >= -kSeriesRange);
+  const Lanes series = inverseNormSeries(x);
+  if (near[0] & near[1] & near[2] & near[3]) return series;
+  Lanes root = n;
+  laneSqrt(root);
+  const Lanes exact = 1.0 / root;
+  return near ? series : exact;
+}
+
 // |q|²
 template <class T>
 RIGID_BODY_LANE_INLINE T quaternionNorm2(const LaneState<T>& y) {
@@ -348,6 +380,15 @@ RIGID_BODY_LANE_INLINE bool nonZero(const Eigen::Vector3d& v) {
   return static_cast<bool>((v.x() != 0.0) | (v.y() != 0.0) | (v.z() != 0.0));
 }
 
+/// Which branch of semi-implicit Euler's rotation turns a body (the bodies of a batch take one): 0 the Cayley
+/// turns about its principal axes, 1 the same with R_BP = 𝟙 (no turn into and out of them), 2 a symmetric
+/// top's exact flow. 0 for every body under another method.
+inline int semiImplicitTurnKind(IntegratorType type, const MassProperties& mass) {
+  if (type != IntegratorType::kSemiImplicitEuler) return 0;
+  if (isSymmetricTop(mass)) return 2;
+  return mass.principalAxesAreBodyAxes() ? 1 : 0;
+}
+
 // Lane i of b from a body, only what a step of `type` with these terms reads (a lone body's step loads it at
 // every call: a step that needs little loads little).
 template <class T>
@@ -369,11 +410,13 @@ RIGID_BODY_LANE_INLINE void loadBody(LaneBody<T>& b, std::size_t i, IntegratorTy
     setLane(b.torque_B, i, input.body.torque);
     b.body_force = b.body_force || nonZero(input.body.force);  // exactly zero, not nearly
     b.body_torque = b.body_torque || nonZero(input.body.torque);
+    b.world_torque = b.world_torque || nonZero(input.world.torque);
   }
   if (type != IntegratorType::kSemiImplicitEuler || !terms.rotation || !terms.world_inertia) return;
   b.mass[i] = &model.mass;
   b.symmetric_top = isSymmetricTop(model.mass);  // the same for every body of a batch
   if (b.symmetric_top) return;
+  b.principal_body = model.mass.principalAxesAreBodyAxes();  // so is this
   setLane(b.inverse_principal, i, model.mass.inversePrincipalMoments());
   setLane(b.principal_axes, i, model.mass.principalAxes());
 }
@@ -412,24 +455,66 @@ RIGID_BODY_LANE_INLINE void storeState(const LaneState<T>& y, std::size_t i, Sta
 
 // ---------------------------------------------------------------------------------------------------------
 
-// Semi-implicit Euler's rotation of a symmetric top (its exact flow) or an isotropic body (exp(h L/I₀)), one
-// lane at a time: they need trigonometry, which the lanes do not have.
+// Semi-implicit Euler's rotation of a symmetric top by its exact flow, one lane at a time: it needs
+// trigonometry, which the lanes do not have.
 template <class T>
-__attribute__((noinline)) void turnByExactFlow(const LaneBody<T>& b, bool world_inertia, double h, LaneState<T>& next) {
+__attribute__((noinline)) void turnByExactFlow(const LaneBody<T>& b, double h, LaneState<T>& next) {
   for (std::size_t i = 0; i < kLaneCount<T>; ++i) {
-    // Only q changes (world L is fixed over either flow): read and written in the lane, no State in between.
+    // Only q changes (world L is fixed over the flow): read and written in the lane, no State in between.
     const Eigen::Vector3d L(laneValue(next.L.x, i), laneValue(next.L.y, i), laneValue(next.L.z, i));
     Eigen::Quaterniond turned(laneValue(next.qw, i), laneValue(next.qx, i), laneValue(next.qy, i), laneValue(next.qz, i));
-    if (world_inertia) {
-      symmetricTopFlow(*b.mass[i], h, L, turned);
-    } else {
-      turned = quaternionExp((h * laneValue(b.j0, i)) * L) * turned;  // exp(h L/I₀) ⊗ q
-    }
+    symmetricTopFlow(*b.mass[i], h, L, turned);
     setLane(next.qx, i, turned.x());
     setLane(next.qy, i, turned.y());
     setLane(next.qz, i, turned.z());
     setLane(next.qw, i, turned.w());
   }
+}
+
+// Whether every lane's value is at most `limit` (a NaN is not).
+RIGID_BODY_LANE_INLINE bool allAtMost(double v, double limit) { return v <= limit; }
+RIGID_BODY_LANE_INLINE bool allAtMost(Lanes v, double limit) {
+  const auto at_most = v <= limit;
+  return at_most[0] & at_most[1] & at_most[2] & at_most[3];
+}
+
+// The lanes of an isotropic turn whose angle is beyond halfAngleSeries's range (or not finite): q ← exp(v) ⊗ q
+// by quaternionExp's sine and cosine, one lane at a time, from the unturned q.
+template <class T>
+__attribute__((noinline)) void turnIsotropicBeyondSeries(const Vec<T>& v, const T& theta2, const LaneState<T>& unturned,
+                                                         LaneState<T>& next) {
+  for (std::size_t i = 0; i < kLaneCount<T>; ++i) {
+    if (laneValue(theta2, i) <= kHalfAngleSeriesLimit) continue;
+    const Eigen::Quaterniond q(laneValue(unturned.qw, i), laneValue(unturned.qx, i), laneValue(unturned.qy, i),
+                               laneValue(unturned.qz, i));
+    const Eigen::Quaterniond turned =
+        quaternionExp(Eigen::Vector3d(laneValue(v.x, i), laneValue(v.y, i), laneValue(v.z, i))) * q;
+    setLane(next.qx, i, turned.x());
+    setLane(next.qy, i, turned.y());
+    setLane(next.qz, i, turned.z());
+    setLane(next.qw, i, turned.w());
+  }
+}
+
+// Semi-implicit Euler's rotation of an isotropic body, q ← exp(h L/I₀) ⊗ q (exact: ω = L/I₀ is constant over
+// the flow), in the lanes: by halfAngleSeries where a lane's angle is within its range (θ ≤ 0.25 rad), else
+// by quaternionExp's sine and cosine. Each lane's choice is its own, so that a body gets the same bits in any
+// batch as alone.
+template <class T>
+RIGID_BODY_LANE_INLINE void turnIsotropic(const LaneBody<T>& b, double h, LaneState<T>& next) {
+  const Vec<T> v = ((T{} + h) * b.j0) * next.L;  // the rotation vector
+  const T theta2 = v.x * v.x + v.y * v.y + v.z * v.z;
+  T c, sinc;
+  halfAngleSeries(theta2, c, sinc);
+  const Vec<T> e = sinc * v;
+  // (c, e) ⊗ q = (c q_w − e·q_v, c q_v + q_w e + e × q_v)
+  const LaneState<T> unturned = next;
+  const T qx = next.qx, qy = next.qy, qz = next.qz, qw = next.qw;
+  next.qw = c * qw - (e.x * qx + e.y * qy + e.z * qz);
+  next.qx = c * qx + qw * e.x + (e.y * qz - e.z * qy);
+  next.qy = c * qy + qw * e.y + (e.z * qx - e.x * qz);
+  next.qz = c * qz + qw * e.z + (e.x * qy - e.y * qx);
+  if (!allAtMost(theta2, kHalfAngleSeriesLimit)) turnIsotropicBeyondSeries(v, theta2, unturned, next);
 }
 
 /// Semi-implicit (symplectic) Euler: the momenta take the wrench of Y_n, then the configuration moves with
@@ -440,8 +525,8 @@ __attribute__((noinline)) void turnByExactFlow(const LaneBody<T>& b, bool world_
 /// of H = Σ m_i²/(2 I_i) into flows of functions of one m_i each): the energy error stays bounded. Turning
 /// instead by exp(h ω) with ω = I⁻¹(q_n) L_{n+1} frozen over the step puts all of the error into the energy,
 /// which drifts and moves the flip times (0.46 rad off on the T handle I = (1, 2, 3), ω_B = (0.01, 10, 0.01)
-/// at h = 1e-5 over 20 s, against 4e-5 rad with the turns). A symmetric top turns by its exact flow and an
-/// isotropic body by exp(h L/I₀), which is exact; both one lane at a time (they need trigonometry).
+/// at h = 1e-5 over 20 s, against 4e-5 rad with the turns). A symmetric top turns by its exact flow (one lane
+/// at a time: trigonometry) and an isotropic body by exp(h L/I₀), which is exact (turnIsotropic).
 template <class T>
 RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>& b, const StepTerms& terms, double h,
                                               const LaneState<T>& y) {
@@ -459,7 +544,11 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>&
   if (!terms.rotation) return next;
   next.L = y.L + step * torque;
   if (!terms.world_inertia || b.symmetric_top) {
-    turnByExactFlow(b, terms.world_inertia, h, next);
+    if (terms.world_inertia) {
+      turnByExactFlow(b, h, next);
+    } else {
+      turnIsotropic(b, h, next);
+    }
     normaliseQuaternion(next);
     return next;
   }
@@ -468,13 +557,9 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>&
   // but it does not wait for it: the world torque's turn into world axes and back leaves the critical path.
   Vec<T> torque_B = terms.input && b.body_torque ? b.torque_B : Vec<T>{T{}, T{}, T{}};
   if (terms.angular_damping) torque_B = torque_B - (b.angular_damping + b.angular_damping) * w;  // w = ½ω_B
-  if (terms.input) torque_B = torque_B + R.s * R.R.transposeTimes(b.torque_W);
-  const Vec<T> m = b.principal_axes.transposeTimes(R.s * R.R.transposeTimes(y.L) + step * torque_B);
-  // Turn a about e₀ by t₀ = a₀ m₀ (a_i = h/(2 I_i)); it turns m by the rational rotation of D₀ = 1 + t₀²,
-  // so t₁ = a₁ N₁/D₀; turn b moves m₂ by the rotation of 1 + t₁², so t₂ = C/E. The three turns' product
-  // (1 + t₀ i)(1 + t₁ j)(1 + t₂ k) = (1 − t₀t₁t₂, t₀ + t₁t₂, t₁ − t₀t₂, t₂ + t₀t₁) (ik = −j, jk = i, k² = −1),
-  // times the common denominator D₀ E, needs no division at all: the normalisation is the one square root
-  // and division of the whole rotation.
+  if (terms.input && b.world_torque) torque_B = torque_B + R.s * R.R.transposeTimes(b.torque_W);
+  const Vec<T> kicked = R.s * R.R.transposeTimes(y.L) + step * torque_B;
+  const Vec<T> m = b.principal_body ? kicked : b.principal_axes.transposeTimes(kicked);
   const Vec<T> a = (T{} + 0.5 * h) * b.inverse_principal;
   const T t0 = a.x * m.x;
   const T D0 = 1.0 + t0 * t0, c0 = 1.0 - t0 * t0, s0 = 2.0 * t0;
@@ -486,14 +571,19 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>&
   const T C = a.z * ((D0sq - Asq) * N2 + 2.0 * A * D0sq * m.x);
   const T rw = D0 * E - t0 * A * C;
   const Vec<T> r_P{t0 * D0 * E + A * C, A * E - t0 * D0 * C, C * D0 + t0 * A * E};
-  const Vec<T> r = b.principal_axes * r_P;  // r_B = R_BP r_P
+  const Vec<T> r = b.principal_body ? r_P : b.principal_axes * r_P;  // r_B = R_BP r_P
   // q ← q ⊗ (rw, r): (q_w rw − q_v·r, q_w r + rw q_v + q_v × r)
   next.qw = y.qw * rw - (y.qx * r.x + y.qy * r.y + y.qz * r.z);
   next.qx = y.qw * r.x + rw * y.qx + (y.qy * r.z - y.qz * r.y);
   next.qy = y.qw * r.y + rw * y.qy + (y.qz * r.x - y.qx * r.z);
   next.qz = y.qw * r.z + rw * y.qz + (y.qx * r.y - y.qy * r.x);
-  // |q ⊗ r|² = |q|² |r|² with |r|² = rw² + |r_P|² (R_BP is a rotation): known before the product is.
-  normaliseQuaternion(next, quaternionNorm2(y) * (rw * rw + (r_P.x * r_P.x + r_P.y * r_P.y + r_P.z * r_P.z)));
+  // |q ⊗ r|² = |q|² |r|², r = (1 + t₀ i)(D₀ + A j)(E + C k) (multiplied out above), so |r|² = D₀ (D₀² + A²)
+  // (E² + C²) = E (E² + C²): three operations after C, where rw² + |r_P|² waited for r itself.
+  const T inverse_norm = inverseNormNear((quaternionNorm2(y) * E) * (E * E + C * C));
+  next.qx = next.qx * inverse_norm;
+  next.qy = next.qy * inverse_norm;
+  next.qz = next.qz * inverse_norm;
+  next.qw = next.qw * inverse_norm;
   return next;
 }
 
