@@ -481,12 +481,12 @@ RIGID_BODY_LANE_INLINE bool allAtMost(Lanes v, double limit) {
 // The lanes of an isotropic turn whose angle is beyond halfAngleSeries's range (or not finite): q ← exp(v) ⊗ q
 // by quaternionExp's sine and cosine, one lane at a time, from the unturned q.
 template <class T>
-__attribute__((noinline)) void turnIsotropicBeyondSeries(const Vec<T>& v, const T& theta2, const LaneState<T>& unturned,
+__attribute__((noinline)) void turnIsotropicBeyondSeries(const Vec<T>& v, const T& theta2, const T (&unturned)[4],
                                                          LaneState<T>& next) {
   for (std::size_t i = 0; i < kLaneCount<T>; ++i) {
     if (laneValue(theta2, i) <= kHalfAngleSeriesLimit) continue;
-    const Eigen::Quaterniond q(laneValue(unturned.qw, i), laneValue(unturned.qx, i), laneValue(unturned.qy, i),
-                               laneValue(unturned.qz, i));
+    const Eigen::Quaterniond q(laneValue(unturned[3], i), laneValue(unturned[0], i), laneValue(unturned[1], i),
+                               laneValue(unturned[2], i));
     const Eigen::Quaterniond turned =
         quaternionExp(Eigen::Vector3d(laneValue(v.x, i), laneValue(v.y, i), laneValue(v.z, i))) * q;
     setLane(next.qx, i, turned.x());
@@ -508,13 +508,15 @@ RIGID_BODY_LANE_INLINE void turnIsotropic(const LaneBody<T>& b, double h, LaneSt
   halfAngleSeries(theta2, c, sinc);
   const Vec<T> e = sinc * v;
   // (c, e) ⊗ q = (c q_w − e·q_v, c q_v + q_w e + e × q_v)
-  const LaneState<T> unturned = next;
   const T qx = next.qx, qy = next.qy, qz = next.qz, qw = next.qw;
   next.qw = c * qw - (e.x * qx + e.y * qy + e.z * qz);
   next.qx = c * qx + qw * e.x + (e.y * qz - e.z * qy);
   next.qy = c * qy + qw * e.y + (e.z * qx - e.x * qz);
   next.qz = c * qz + qw * e.z + (e.x * qy - e.y * qx);
-  if (!allAtMost(theta2, kHalfAngleSeriesLimit)) turnIsotropicBeyondSeries(v, theta2, unturned, next);
+  if (!allAtMost(theta2, kHalfAngleSeriesLimit)) {
+    const T unturned[4] = {qx, qy, qz, qw};
+    turnIsotropicBeyondSeries(v, theta2, unturned, next);
+  }
 }
 
 /// Semi-implicit (symplectic) Euler: the momenta take the wrench of Y_n, then the configuration moves with
@@ -560,6 +562,11 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>&
   if (terms.input && b.world_torque) torque_B = torque_B + R.s * R.R.transposeTimes(b.torque_W);
   const Vec<T> kicked = R.s * R.R.transposeTimes(y.L) + step * torque_B;
   const Vec<T> m = b.principal_body ? kicked : b.principal_axes.transposeTimes(kicked);
+  // Turn a about e₀ by t₀ = a₀ m₀ (a_i = h/(2 I_i)); it turns m by the rational rotation of D₀ = 1 + t₀²,
+  // so t₁ = a₁ N₁/D₀; turn b moves m₂ by the rotation of 1 + t₁², so t₂ = C/E. The three turns' product
+  // (1 + t₀ i)(1 + t₁ j)(1 + t₂ k) = (1 − t₀t₁t₂, t₀ + t₁t₂, t₁ − t₀t₂, t₂ + t₀t₁) (ik = −j, jk = i, k² = −1),
+  // times the common denominator D₀ E, needs no division at all: the normalisation is the one square root
+  // and division of the whole rotation, and near 1 not even those (inverseNormNear).
   const Vec<T> a = (T{} + 0.5 * h) * b.inverse_principal;
   const T t0 = a.x * m.x;
   const T D0 = 1.0 + t0 * t0, c0 = 1.0 - t0 * t0, s0 = 2.0 * t0;
