@@ -178,7 +178,7 @@ void Scene::stepBodiesInLanes(std::size_t begin, std::size_t end, std::int64_t s
   constexpr std::size_t kOpenBatches = 4;
   struct Batch {
     StepTerms terms;
-    int turn_kind = 0;  // semi-implicit Euler's rotation branch (integrators::semiImplicitTurnKind)
+    integrators::SemiImplicitTurn turn_kind{};  // semi-implicit Euler's rotation branch
     std::array<std::size_t, integrators::kLanes> bodies;
     std::size_t count = 0;
   };
@@ -194,7 +194,7 @@ void Scene::stepBodiesInLanes(std::size_t begin, std::size_t end, std::int64_t s
   };
   for (std::size_t body = begin; body < end; ++body) {
     if (records_[body].divergence != Divergence::kNone || collides(body)) continue;
-    const int turn_kind = integrators::semiImplicitTurnKind(integrator_type_, models_[body].mass);
+    const integrators::SemiImplicitTurn turn_kind = integrators::semiImplicitTurnKind(integrator_type_, models_[body].mass);
     std::size_t k = 0;
     while (k < used && (open[k].terms != terms_[body] || open[k].turn_kind != turn_kind)) ++k;
     if (k == used) {

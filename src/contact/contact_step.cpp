@@ -411,13 +411,14 @@ void ContactStep::addContact(const ContactPoint& point, const SceneBodies& bodie
   std::pair<Eigen::Vector3d, Eigen::Vector3d> anchors(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
   if (last != nullptr && last->anchored) {
     const bool lower_a = point.a < point.b;
-    anchors = {lower_a ? last->anchor_lo : last->anchor_hi, lower_a ? last->anchor_hi : last->anchor_lo};
-    const Eigen::Vector3d A = inWorld(point.a, anchors.first, bodies);
-    const Eigen::Vector3d B = inWorld(point.b, anchors.second, bodies);
+    const Eigen::Vector3d& on_a = lower_a ? last->anchor_lo : last->anchor_hi;
+    const Eigen::Vector3d& on_b = lower_a ? last->anchor_hi : last->anchor_lo;
+    const Eigen::Vector3d A = inWorld(point.a, on_a, bodies), B = inWorld(point.b, on_b, bodies);
     if ((A - point.on_a).squaredNorm() < kWarmStartMatch * kWarmStartMatch &&
         (B - point.on_b).squaredNorm() < kWarmStartMatch * kWarmStartMatch) {
       c.anchored = true;
       c.anchor_gap = Eigen::Vector2d(c.t1.dot(A - B), c.t2.dot(A - B));
+      anchors = {on_a, on_b};
     }
   }
   solver_contacts_.push_back(c);

@@ -120,7 +120,7 @@ class ContactStep {
   Eigen::Vector3d inObjectFrame(std::size_t object, const Eigen::Vector3d& p_W, const SceneBodies& bodies) const;
   Eigen::Vector3d inWorld(std::size_t object, const Eigen::Vector3d& local, const SceneBodies& bodies) const;
   std::vector<WarmPoint> warm_, warm_next_;
-  // Per solver contact: the anchors it carries on a and on b (in those objects' frames), if anchored.
+  // Per solver contact: the anchors it carries on a and on b (in those objects' frames); zeros if not anchored.
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> solver_anchors_;
 };
 

@@ -250,6 +250,15 @@ RIGID_BODY_LANE_INLINE Lanes inverseNorm(Lanes n) {
   return (d <= kNearUnitNorm) & (d >= -kNearUnitNorm) ? newton : exact;
 }
 
+// Whether every lane of a comparison of Lanes holds (each lane of the result is 0 or −1).
+template <class Mask>
+RIGID_BODY_LANE_INLINE bool allLanes(const Mask& holds) {
+  return holds[0] & holds[1] & holds[2] & holds[3];
+}
+// Whether every lane's value is at most `limit` (a NaN is not).
+RIGID_BODY_LANE_INLINE bool allAtMost(double v, double limit) { return v <= limit; }
+RIGID_BODY_LANE_INLINE bool allAtMost(Lanes v, double limit) { return allLanes(v <= limit); }
+
 // 1/√n for n = 1 + x near 1 by the series of (1 + x)^(-1/2), through x⁶, by Estrin's scheme (products of
 // depth four where a square root and a division take ~30 cycles): for |x| ≤ 2⁻⁸ the first term left out,
 // (429/2048)|x|⁷ ≤ 2⁻⁵⁸, is below the rounding of 1/√n itself; elsewhere 1/√n. For a step's rotation that
@@ -272,7 +281,7 @@ RIGID_BODY_LANE_INLINE Lanes inverseNormNear(Lanes n) {
   const Lanes x = n - 1.0;
   const auto near = (x <= kSeriesRange) & (x >= -kSeriesRange);
   const Lanes series = inverseNormSeries(x);
-  if (near[0] & near[1] & near[2] & near[3]) return series;
+  if (allLanes(near)) return series;
   Lanes root = n;
   laneSqrt(root);
   const Lanes exact = 1.0 / root;
@@ -285,10 +294,9 @@ RIGID_BODY_LANE_INLINE T quaternionNorm2(const LaneState<T>& y) {
   return y.qx * y.qx + y.qy * y.qy + y.qz * y.qz + y.qw * y.qw;
 }
 
-// q ← q/|q|, given n = |q|² (a caller may know it sooner than q itself).
+// q ← q/|q|, given 1/|q| (a caller may know |q| sooner than q itself, or take its inverse another way).
 template <class T>
-RIGID_BODY_LANE_INLINE void normaliseQuaternion(LaneState<T>& y, const T& n) {
-  const T inverse_norm = inverseNorm(n);
+RIGID_BODY_LANE_INLINE void scaleQuaternion(LaneState<T>& y, const T& inverse_norm) {
   y.qx = y.qx * inverse_norm;
   y.qy = y.qy * inverse_norm;
   y.qz = y.qz * inverse_norm;
@@ -298,7 +306,7 @@ RIGID_BODY_LANE_INLINE void normaliseQuaternion(LaneState<T>& y, const T& n) {
 // q ← q/|q|
 template <class T>
 RIGID_BODY_LANE_INLINE void normaliseQuaternion(LaneState<T>& y) {
-  normaliseQuaternion(y, quaternionNorm2(y));
+  scaleQuaternion(y, inverseNorm(quaternionNorm2(y)));
 }
 
 /// Explicit Euler: Y + h f(Y), q normalised.
@@ -380,13 +388,16 @@ RIGID_BODY_LANE_INLINE bool nonZero(const Eigen::Vector3d& v) {
   return static_cast<bool>((v.x() != 0.0) | (v.y() != 0.0) | (v.z() != 0.0));
 }
 
-/// Which branch of semi-implicit Euler's rotation turns a body (the bodies of a batch take one): 0 the Cayley
-/// turns about its principal axes, 1 the same with R_BP = 𝟙 (no turn into and out of them), 2 a symmetric
-/// top's exact flow. 0 for every body under another method.
-inline int semiImplicitTurnKind(IntegratorType type, const MassProperties& mass) {
-  if (type != IntegratorType::kSemiImplicitEuler) return 0;
-  if (isSymmetricTop(mass)) return 2;
-  return mass.principalAxesAreBodyAxes() ? 1 : 0;
+/// Which branch of semi-implicit Euler's rotation turns a body (the bodies of a batch take one).
+enum class SemiImplicitTurn {
+  kPrincipalAxes,  ///< the Cayley turns about its principal axes (and every body under another method)
+  kBodyAxes,       ///< the same with R_BP = 𝟙: no turn into and out of the principal axes
+  kSymmetricTop,   ///< a symmetric top's exact flow
+};
+inline SemiImplicitTurn semiImplicitTurnKind(IntegratorType type, const MassProperties& mass) {
+  if (type != IntegratorType::kSemiImplicitEuler) return SemiImplicitTurn::kPrincipalAxes;
+  if (isSymmetricTop(mass)) return SemiImplicitTurn::kSymmetricTop;
+  return mass.principalAxesAreBodyAxes() ? SemiImplicitTurn::kBodyAxes : SemiImplicitTurn::kPrincipalAxes;
 }
 
 // Lane i of b from a body, only what a step of `type` with these terms reads (a lone body's step loads it at
@@ -414,9 +425,10 @@ RIGID_BODY_LANE_INLINE void loadBody(LaneBody<T>& b, std::size_t i, IntegratorTy
   }
   if (type != IntegratorType::kSemiImplicitEuler || !terms.rotation || !terms.world_inertia) return;
   b.mass[i] = &model.mass;
-  b.symmetric_top = isSymmetricTop(model.mass);  // the same for every body of a batch
+  const SemiImplicitTurn kind = semiImplicitTurnKind(type, model.mass);  // the same for every body of a batch
+  b.symmetric_top = kind == SemiImplicitTurn::kSymmetricTop;
   if (b.symmetric_top) return;
-  b.principal_body = model.mass.principalAxesAreBodyAxes();  // so is this
+  b.principal_body = kind == SemiImplicitTurn::kBodyAxes;
   setLane(b.inverse_principal, i, model.mass.inversePrincipalMoments());
   setLane(b.principal_axes, i, model.mass.principalAxes());
 }
@@ -469,13 +481,6 @@ __attribute__((noinline)) void turnByExactFlow(const LaneBody<T>& b, double h, L
     setLane(next.qz, i, turned.z());
     setLane(next.qw, i, turned.w());
   }
-}
-
-// Whether every lane's value is at most `limit` (a NaN is not).
-RIGID_BODY_LANE_INLINE bool allAtMost(double v, double limit) { return v <= limit; }
-RIGID_BODY_LANE_INLINE bool allAtMost(Lanes v, double limit) {
-  const auto at_most = v <= limit;
-  return at_most[0] & at_most[1] & at_most[2] & at_most[3];
 }
 
 // The lanes of an isotropic turn whose angle is beyond halfAngleSeries's range (or not finite): q ← exp(v) ⊗ q
@@ -586,11 +591,7 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>&
   next.qz = y.qw * r.z + rw * y.qz + (y.qx * r.y - y.qy * r.x);
   // |q ⊗ r|² = |q|² |r|², r = (1 + t₀ i)(D₀ + A j)(E + C k) (multiplied out above), so |r|² = D₀ (D₀² + A²)
   // (E² + C²) = E (E² + C²): three operations after C, where rw² + |r_P|² waited for r itself.
-  const T inverse_norm = inverseNormNear((quaternionNorm2(y) * E) * (E * E + C * C));
-  next.qx = next.qx * inverse_norm;
-  next.qy = next.qy * inverse_norm;
-  next.qz = next.qz * inverse_norm;
-  next.qw = next.qw * inverse_norm;
+  scaleQuaternion(next, inverseNormNear((quaternionNorm2(y) * E) * (E * E + C * C)));
   return next;
 }
 
