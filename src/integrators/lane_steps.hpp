@@ -23,6 +23,7 @@
 // Semi-implicit Euler: see laneSemiImplicitEulerStep.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -121,7 +122,9 @@ struct LaneBody {
   // (splitting.cpp), one lane at a time, with these bodies' mass properties; a body whose principal axes are
   // its body axes (R_BP = 𝟙, a box) skips the turns into and out of them.
   bool symmetric_top = false, principal_body = false;
-  const MassProperties* mass[kLaneCount<T>];
+  // Null in a batch's lanes that hold no body (they repeat its last one; their results are dropped), which
+  // then skip the exact flow's trigonometry.
+  std::array<const MassProperties*, kLaneCount<T>> mass{};
 };
 
 // Y + c k, every component (q, L only with the rotation term: without it their rates are zero).
@@ -467,37 +470,60 @@ RIGID_BODY_LANE_INLINE void storeState(const LaneState<T>& y, std::size_t i, Sta
 
 // ---------------------------------------------------------------------------------------------------------
 
-// Semi-implicit Euler's rotation of a symmetric top by its exact flow, one lane at a time: it needs
-// trigonometry, which the lanes do not have.
+// A quaternion's lanes (x, y, z, w), for the turns compiled out of line. They take copies of what they read
+// and write (by reference: a Lanes argument by value is passed one way in an AVX file and another in an SSE2
+// one, and both files instantiate these). A reference to the step's own state or body would let it escape,
+// and GCC then kept every field of both in memory for the whole step, on every path (general semi-implicit
+// Euler step -3 % without).
 template <class T>
-__attribute__((noinline)) void turnByExactFlow(const LaneBody<T>& b, double h, LaneState<T>& next) {
+struct LaneQuaternion {
+  T x, y, z, w;
+};
+template <class T>
+RIGID_BODY_LANE_INLINE LaneQuaternion<T> quaternionOf(const LaneState<T>& y) {
+  return {y.qx, y.qy, y.qz, y.qw};
+}
+template <class T>
+RIGID_BODY_LANE_INLINE void setQuaternion(LaneState<T>& y, const LaneQuaternion<T>& q) {
+  y.qx = q.x;
+  y.qy = q.y;
+  y.qz = q.z;
+  y.qw = q.w;
+}
+
+// Semi-implicit Euler's rotation of a symmetric top by its exact flow, one lane at a time: it needs
+// trigonometry, which the lanes do not have. q in, the turned q out.
+template <class T>
+__attribute__((noinline)) void turnByExactFlow(const std::array<const MassProperties*, kLaneCount<T>>& mass, double h,
+                                               const Vec<T>& L, LaneQuaternion<T>& q) {
   for (std::size_t i = 0; i < kLaneCount<T>; ++i) {
-    // Only q changes (world L is fixed over the flow): read and written in the lane, no State in between.
-    const Eigen::Vector3d L(laneValue(next.L.x, i), laneValue(next.L.y, i), laneValue(next.L.z, i));
-    Eigen::Quaterniond turned(laneValue(next.qw, i), laneValue(next.qx, i), laneValue(next.qy, i), laneValue(next.qz, i));
-    symmetricTopFlow(*b.mass[i], h, L, turned);
-    setLane(next.qx, i, turned.x());
-    setLane(next.qy, i, turned.y());
-    setLane(next.qz, i, turned.z());
-    setLane(next.qw, i, turned.w());
+    if (mass[i] == nullptr) continue;  // a lane that holds no body (LaneBody::mass)
+    // Only q changes (world L is fixed over the flow).
+    Eigen::Quaterniond turned(laneValue(q.w, i), laneValue(q.x, i), laneValue(q.y, i), laneValue(q.z, i));
+    symmetricTopFlow(*mass[i], h, Eigen::Vector3d(laneValue(L.x, i), laneValue(L.y, i), laneValue(L.z, i)), turned);
+    setLane(q.x, i, turned.x());
+    setLane(q.y, i, turned.y());
+    setLane(q.z, i, turned.z());
+    setLane(q.w, i, turned.w());
   }
 }
 
-// The lanes of an isotropic turn whose angle is beyond halfAngleSeries's range (or not finite): q ← exp(v) ⊗ q
-// by quaternionExp's sine and cosine, one lane at a time, from the unturned q.
+// The lanes of an isotropic turn whose angle is beyond halfAngleSeries's range (or not finite): exp(v) ⊗ q
+// by quaternionExp's sine and cosine, one lane at a time, from the unturned q, into `turned` (whose other
+// lanes, the series' turn, stay).
 template <class T>
-__attribute__((noinline)) void turnIsotropicBeyondSeries(const Vec<T>& v, const T& theta2, const T (&unturned)[4],
-                                                         LaneState<T>& next) {
+__attribute__((noinline)) void turnIsotropicBeyondSeries(const Vec<T>& v, const T& theta2,
+                                                         const LaneQuaternion<T>& unturned, LaneQuaternion<T>& turned) {
   for (std::size_t i = 0; i < kLaneCount<T>; ++i) {
     if (laneValue(theta2, i) <= kHalfAngleSeriesLimit) continue;
-    const Eigen::Quaterniond q(laneValue(unturned[3], i), laneValue(unturned[0], i), laneValue(unturned[1], i),
-                               laneValue(unturned[2], i));
-    const Eigen::Quaterniond turned =
+    const Eigen::Quaterniond q(laneValue(unturned.w, i), laneValue(unturned.x, i), laneValue(unturned.y, i),
+                               laneValue(unturned.z, i));
+    const Eigen::Quaterniond exact =
         quaternionExp(Eigen::Vector3d(laneValue(v.x, i), laneValue(v.y, i), laneValue(v.z, i))) * q;
-    setLane(next.qx, i, turned.x());
-    setLane(next.qy, i, turned.y());
-    setLane(next.qz, i, turned.z());
-    setLane(next.qw, i, turned.w());
+    setLane(turned.x, i, exact.x());
+    setLane(turned.y, i, exact.y());
+    setLane(turned.z, i, exact.z());
+    setLane(turned.w, i, exact.w());
   }
 }
 
@@ -519,8 +545,10 @@ RIGID_BODY_LANE_INLINE void turnIsotropic(const LaneBody<T>& b, double h, LaneSt
   next.qy = c * qy + qw * e.y + (e.z * qx - e.x * qz);
   next.qz = c * qz + qw * e.z + (e.x * qy - e.y * qx);
   if (!allAtMost(theta2, kHalfAngleSeriesLimit)) {
-    const T unturned[4] = {qx, qy, qz, qw};
-    turnIsotropicBeyondSeries(v, theta2, unturned, next);
+    const LaneQuaternion<T> unturned{qx, qy, qz, qw};
+    LaneQuaternion<T> turned = quaternionOf(next);
+    turnIsotropicBeyondSeries(v, theta2, unturned, turned);
+    setQuaternion(next, turned);
   }
 }
 
@@ -552,7 +580,11 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>&
   next.L = y.L + step * torque;
   if (!terms.world_inertia || b.symmetric_top) {
     if (terms.world_inertia) {
-      turnByExactFlow(b, h, next);
+      const std::array<const MassProperties*, kLaneCount<T>> mass = b.mass;
+      const Vec<T> L = next.L;
+      LaneQuaternion<T> q = quaternionOf(next);
+      turnByExactFlow(mass, h, L, q);
+      setQuaternion(next, q);
     } else {
       turnIsotropic(b, h, next);
     }
@@ -701,11 +733,11 @@ inline bool laneStepOf(const Model& model, const StepTerms& terms, const Applied
   LaneState<double> y;
   loadState(y, 0, state);
   LaneState<double> next;
-  if constexpr (kType == IntegratorType::kRk4) {
+  if constexpr (kType == IntegratorType::kRk4 || kType == IntegratorType::kSemiImplicitEuler) {
     // The general terms as constants, a copy of the step of its own: GCC then allocates the registers of RK4's
     // four stages (~50 live values) for the general body alone, free of the terms' branches (general rk4
-    // 121 -> 111 ns). The Eulers' one stage loses by it (explicit Euler 34 -> 50 ns): they take the terms as
-    // they come.
+    // 121 -> 111 ns), and of semi-implicit Euler's ~60 body constants (general step -4 %). Explicit Euler
+    // loses by it (34 -> 50 ns): it takes the terms as they come.
     static constexpr StepTerms kAllTerms{};
     next = terms == kAllTerms ? laneStep(kType, b, kAllTerms, h, y) : laneStep(kType, b, terms, h, y);
   } else {
