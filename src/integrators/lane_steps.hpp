@@ -119,11 +119,15 @@ struct LaneBody {
   Vec<T> inverse_principal;
   Mat<T> principal_axes;
   // Equal in every lane of a batch (semiImplicitTurnKind): a symmetric top turns by its exact flow
-  // (splitting.cpp), one lane at a time, with these bodies' mass properties; a body whose principal axes are
-  // its body axes (R_BP = 𝟙, a box) skips the turns into and out of them.
+  // (turnSymmetricTop); a body whose principal axes are its body axes (R_BP = 𝟙, a box) skips the turns into
+  // and out of them.
   bool symmetric_top = false, principal_body = false;
-  // Null in a batch's lanes that hold no body (they repeat its last one; their results are dropped), which
-  // then skip the exact flow's trigonometry.
+  // A symmetric top's flow (SymmetricTopAxes): its odd principal axis in body axes, 1/I_r, 1/I_s − 1/I_r.
+  Vec<T> top_axis;
+  T top_inverse_pair, top_spin_coefficient;
+  // The bodies' mass properties, for a symmetric top's lanes whose turns are beyond the series (the exact
+  // flow's sines and cosines, one lane at a time). Null in a batch's lanes that hold no body (they repeat its
+  // last one; their results are dropped), which then skip it.
   std::array<const MassProperties*, kLaneCount<T>> mass{};
 };
 
@@ -430,7 +434,13 @@ RIGID_BODY_LANE_INLINE void loadBody(LaneBody<T>& b, std::size_t i, IntegratorTy
   b.mass[i] = &model.mass;
   const SemiImplicitTurn kind = semiImplicitTurnKind(type, model.mass);  // the same for every body of a batch
   b.symmetric_top = kind == SemiImplicitTurn::kSymmetricTop;
-  if (b.symmetric_top) return;
+  if (b.symmetric_top) {
+    const SymmetricTopAxes top = symmetricTopAxes(model.mass);
+    setLane(b.top_axis, i, top.axis);
+    setLane(b.top_inverse_pair, i, top.inverse_pair);
+    setLane(b.top_spin_coefficient, i, top.spin_coefficient);
+    return;
+  }
   b.principal_body = kind == SemiImplicitTurn::kBodyAxes;
   setLane(b.inverse_principal, i, model.mass.inversePrincipalMoments());
   setLane(b.principal_axes, i, model.mass.principalAxes());
@@ -470,11 +480,11 @@ RIGID_BODY_LANE_INLINE void storeState(const LaneState<T>& y, std::size_t i, Sta
 
 // ---------------------------------------------------------------------------------------------------------
 
-// A quaternion's lanes (x, y, z, w), for the turns compiled out of line. They take copies of what they read
-// and write (by reference: a Lanes argument by value is passed one way in an AVX file and another in an SSE2
-// one, and both files instantiate these). A reference to the step's own state or body would let it escape,
-// and GCC then kept every field of both in memory for the whole step, on every path (general semi-implicit
-// Euler step -3 % without).
+// A quaternion's lanes (x, y, z, w). The turns compiled out of line (turnLanesBeyondSeries) take copies of
+// what they read and write (by reference: a Lanes argument by value is passed one way in an AVX file and
+// another in an SSE2 one, and both files instantiate these). A reference to the step's own state or body
+// would let it escape, and GCC then kept every field of both in memory for the whole step, on every path
+// (general semi-implicit Euler step -3 % without).
 template <class T>
 struct LaneQuaternion {
   T x, y, z, w;
@@ -491,40 +501,36 @@ RIGID_BODY_LANE_INLINE void setQuaternion(LaneState<T>& y, const LaneQuaternion<
   y.qw = q.w;
 }
 
-// Semi-implicit Euler's rotation of a symmetric top by its exact flow, one lane at a time: it needs
-// trigonometry, which the lanes do not have. q in, the turned q out.
-template <class T>
-__attribute__((noinline)) void turnByExactFlow(const std::array<const MassProperties*, kLaneCount<T>>& mass, double h,
-                                               const Vec<T>& L, LaneQuaternion<T>& q) {
+// The lanes of a turn whose angles are beyond halfAngleSeries's range (either of two, or not finite), one lane
+// at a time: turned(i) = exact(i, unturned q) by the library's sines and cosines; the other lanes of `turned`
+// (the series' turn) stay.
+template <class T, class Exact>
+__attribute__((noinline)) void turnLanesBeyondSeries(const T& theta2, const T& other_theta2,
+                                                     const LaneQuaternion<T>& unturned, LaneQuaternion<T>& turned,
+                                                     const Exact& exact) {
   for (std::size_t i = 0; i < kLaneCount<T>; ++i) {
-    if (mass[i] == nullptr) continue;  // a lane that holds no body (LaneBody::mass)
-    // Only q changes (world L is fixed over the flow).
-    Eigen::Quaterniond turned(laneValue(q.w, i), laneValue(q.x, i), laneValue(q.y, i), laneValue(q.z, i));
-    symmetricTopFlow(*mass[i], h, Eigen::Vector3d(laneValue(L.x, i), laneValue(L.y, i), laneValue(L.z, i)), turned);
-    setLane(q.x, i, turned.x());
-    setLane(q.y, i, turned.y());
-    setLane(q.z, i, turned.z());
-    setLane(q.w, i, turned.w());
+    if (laneValue(theta2, i) <= kHalfAngleSeriesLimit && laneValue(other_theta2, i) <= kHalfAngleSeriesLimit) continue;
+    const Eigen::Quaterniond q(laneValue(unturned.w, i), laneValue(unturned.x, i), laneValue(unturned.y, i),
+                               laneValue(unturned.z, i));
+    const Eigen::Quaterniond e = exact(i, q);
+    setLane(turned.x, i, e.x());
+    setLane(turned.y, i, e.y());
+    setLane(turned.z, i, e.z());
+    setLane(turned.w, i, e.w());
   }
 }
 
-// The lanes of an isotropic turn whose angle is beyond halfAngleSeries's range (or not finite): exp(v) ⊗ q
-// by quaternionExp's sine and cosine, one lane at a time, from the unturned q, into `turned` (whose other
-// lanes, the series' turn, stay).
+// (c, e) ⊗ q = (c q_w − e·q_v, c q_v + q_w e + e × q_v): q turned by (c, e) in world axes.
 template <class T>
-__attribute__((noinline)) void turnIsotropicBeyondSeries(const Vec<T>& v, const T& theta2,
-                                                         const LaneQuaternion<T>& unturned, LaneQuaternion<T>& turned) {
-  for (std::size_t i = 0; i < kLaneCount<T>; ++i) {
-    if (laneValue(theta2, i) <= kHalfAngleSeriesLimit) continue;
-    const Eigen::Quaterniond q(laneValue(unturned.w, i), laneValue(unturned.x, i), laneValue(unturned.y, i),
-                               laneValue(unturned.z, i));
-    const Eigen::Quaterniond exact =
-        quaternionExp(Eigen::Vector3d(laneValue(v.x, i), laneValue(v.y, i), laneValue(v.z, i))) * q;
-    setLane(turned.x, i, exact.x());
-    setLane(turned.y, i, exact.y());
-    setLane(turned.z, i, exact.z());
-    setLane(turned.w, i, exact.w());
-  }
+RIGID_BODY_LANE_INLINE LaneQuaternion<T> turnedInWorld(const T& c, const Vec<T>& e, const LaneQuaternion<T>& q) {
+  return {c * q.x + q.w * e.x + (e.y * q.z - e.z * q.y), c * q.y + q.w * e.y + (e.z * q.x - e.x * q.z),
+          c * q.z + q.w * e.z + (e.x * q.y - e.y * q.x), c * q.w - (e.x * q.x + e.y * q.y + e.z * q.z)};
+}
+// q ⊗ (c, e) = (c q_w − q_v·e, c q_v + q_w e + q_v × e): q turned by (c, e) in body axes.
+template <class T>
+RIGID_BODY_LANE_INLINE LaneQuaternion<T> turnedInBody(const LaneQuaternion<T>& q, const T& c, const Vec<T>& e) {
+  return {c * q.x + q.w * e.x + (q.y * e.z - q.z * e.y), c * q.y + q.w * e.y + (q.z * e.x - q.x * e.z),
+          c * q.z + q.w * e.z + (q.x * e.y - q.y * e.x), c * q.w - (q.x * e.x + q.y * e.y + q.z * e.z)};
 }
 
 // Semi-implicit Euler's rotation of an isotropic body, q ← exp(h L/I₀) ⊗ q (exact: ω = L/I₀ is constant over
@@ -537,19 +543,50 @@ RIGID_BODY_LANE_INLINE void turnIsotropic(const LaneBody<T>& b, double h, LaneSt
   const T theta2 = v.x * v.x + v.y * v.y + v.z * v.z;
   T c, sinc;
   halfAngleSeries(theta2, c, sinc);
-  const Vec<T> e = sinc * v;
-  // (c, e) ⊗ q = (c q_w − e·q_v, c q_v + q_w e + e × q_v)
-  const T qx = next.qx, qy = next.qy, qz = next.qz, qw = next.qw;
-  next.qw = c * qw - (e.x * qx + e.y * qy + e.z * qz);
-  next.qx = c * qx + qw * e.x + (e.y * qz - e.z * qy);
-  next.qy = c * qy + qw * e.y + (e.z * qx - e.x * qz);
-  next.qz = c * qz + qw * e.z + (e.x * qy - e.y * qx);
+  const LaneQuaternion<T> unturned = quaternionOf(next);
+  LaneQuaternion<T> turned = turnedInWorld(c, sinc * v, unturned);
   if (!allAtMost(theta2, kHalfAngleSeriesLimit)) {
-    const LaneQuaternion<T> unturned{qx, qy, qz, qw};
-    LaneQuaternion<T> turned = quaternionOf(next);
-    turnIsotropicBeyondSeries(v, theta2, unturned, turned);
-    setQuaternion(next, turned);
+    turnLanesBeyondSeries(theta2, T{}, unturned, turned, [v](std::size_t i, const Eigen::Quaterniond& q) {
+      return quaternionExp(Eigen::Vector3d(laneValue(v.x, i), laneValue(v.y, i), laneValue(v.z, i))) * q;
+    });
   }
+  setQuaternion(next, turned);
+}
+
+// Semi-implicit Euler's rotation of a symmetric top by its exact flow over h at L_{n+1} (its two flows
+// commute): q ← exp(h L/I_r) ⊗ q ⊗ exp(h (1/I_s − 1/I_r) m_s u), u its odd principal axis in body axes and
+// m_s = u · Rᵀ L (docs/references.md). In the lanes, by halfAngleSeries where both of a lane's angles are
+// within its range, else by symmetricTopFlow's sines and cosines (one lane at a time, each lane's choice its
+// own).
+template <class T>
+RIGID_BODY_LANE_INLINE void turnSymmetricTop(const LaneBody<T>& b, double h, LaneState<T>& next) {
+  const LaneQuaternion<T> unturned = quaternionOf(next);
+  const Vec<T>& L = next.L;
+  // Rᵀ L = q* L q = L + w t + t × q_v with t = 2 L × q_v (|q| = 1: the step's start, normalised).
+  const T qx = unturned.x, qy = unturned.y, qz = unturned.z, qw = unturned.w;
+  const Vec<T> t{2.0 * (L.y * qz - L.z * qy), 2.0 * (L.z * qx - L.x * qz), 2.0 * (L.x * qy - L.y * qx)};
+  const Vec<T> m{L.x + qw * t.x + (t.y * qz - t.z * qy), L.y + qw * t.y + (t.z * qx - t.x * qz),
+                 L.z + qw * t.z + (t.x * qy - t.y * qx)};
+  const Vec<T>& u = b.top_axis;
+  const T spin = ((T{} + h) * b.top_spin_coefficient) * (u.x * m.x + u.y * m.y + u.z * m.z);  // the body turn's angle
+  const T spin2 = spin * spin;
+  const Vec<T> v = ((T{} + h) * b.top_inverse_pair) * L;  // the world turn's rotation vector
+  const T theta2 = v.x * v.x + v.y * v.y + v.z * v.z;
+  T c_spin, sinc_spin, c, sinc;
+  halfAngleSeries(spin2, c_spin, sinc_spin);
+  halfAngleSeries(theta2, c, sinc);
+  LaneQuaternion<T> turned = turnedInWorld(c, sinc * v, turnedInBody(unturned, c_spin, (sinc_spin * spin) * u));
+  if (!(allAtMost(spin2, kHalfAngleSeriesLimit) && allAtMost(theta2, kHalfAngleSeriesLimit))) {
+    const std::array<const MassProperties*, kLaneCount<T>> mass = b.mass;
+    const Vec<T> L_copy = L;
+    turnLanesBeyondSeries(spin2, theta2, unturned, turned, [mass, L_copy, h](std::size_t i, const Eigen::Quaterniond& q) {
+      if (mass[i] == nullptr) return q;  // a lane that holds no body (LaneBody::mass)
+      Eigen::Quaterniond exact = q;
+      symmetricTopFlow(*mass[i], h, Eigen::Vector3d(laneValue(L_copy.x, i), laneValue(L_copy.y, i), laneValue(L_copy.z, i)), exact);
+      return exact;
+    });
+  }
+  setQuaternion(next, turned);
 }
 
 /// Semi-implicit (symplectic) Euler: the momenta take the wrench of Y_n, then the configuration moves with
@@ -560,8 +597,8 @@ RIGID_BODY_LANE_INLINE void turnIsotropic(const LaneBody<T>& b, double h, LaneSt
 /// of H = Σ m_i²/(2 I_i) into flows of functions of one m_i each): the energy error stays bounded. Turning
 /// instead by exp(h ω) with ω = I⁻¹(q_n) L_{n+1} frozen over the step puts all of the error into the energy,
 /// which drifts and moves the flip times (0.46 rad off on the T handle I = (1, 2, 3), ω_B = (0.01, 10, 0.01)
-/// at h = 1e-5 over 20 s, against 4e-5 rad with the turns). A symmetric top turns by its exact flow (one lane
-/// at a time: trigonometry) and an isotropic body by exp(h L/I₀), which is exact (turnIsotropic).
+/// at h = 1e-5 over 20 s, against 4e-5 rad with the turns). A symmetric top turns by its exact flow
+/// (turnSymmetricTop) and an isotropic body by exp(h L/I₀), which is exact (turnIsotropic).
 template <class T>
 RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>& b, const StepTerms& terms, double h,
                                               const LaneState<T>& y) {
@@ -580,11 +617,7 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>&
   next.L = y.L + step * torque;
   if (!terms.world_inertia || b.symmetric_top) {
     if (terms.world_inertia) {
-      const std::array<const MassProperties*, kLaneCount<T>> mass = b.mass;
-      const Vec<T> L = next.L;
-      LaneQuaternion<T> q = quaternionOf(next);
-      turnByExactFlow(mass, h, L, q);
-      setQuaternion(next, q);
+      turnSymmetricTop(b, h, next);
     } else {
       turnIsotropic(b, h, next);
     }
@@ -616,11 +649,7 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>&
   const T rw = D0 * E - t0 * A * C;
   const Vec<T> r_P{t0 * D0 * E + A * C, A * E - t0 * D0 * C, C * D0 + t0 * A * E};
   const Vec<T> r = b.principal_body ? r_P : b.principal_axes * r_P;  // r_B = R_BP r_P
-  // q ← q ⊗ (rw, r): (q_w rw − q_v·r, q_w r + rw q_v + q_v × r)
-  next.qw = y.qw * rw - (y.qx * r.x + y.qy * r.y + y.qz * r.z);
-  next.qx = y.qw * r.x + rw * y.qx + (y.qy * r.z - y.qz * r.y);
-  next.qy = y.qw * r.y + rw * y.qy + (y.qz * r.x - y.qx * r.z);
-  next.qz = y.qw * r.z + rw * y.qz + (y.qx * r.y - y.qy * r.x);
+  setQuaternion(next, turnedInBody(quaternionOf(y), rw, r));  // q ← q ⊗ (rw, r)
   // |q ⊗ r|² = |q|² |r|², r = (1 + t₀ i)(D₀ + A j)(E + C k) (multiplied out above), so |r|² = D₀ (D₀² + A²)
   // (E² + C²) = E (E² + C²): three operations after C, where rw² + |r_P|² waited for r itself.
   scaleQuaternion(next, inverseNormNear((quaternionNorm2(y) * E) * (E * E + C * C)));

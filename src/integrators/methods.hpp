@@ -16,6 +16,16 @@ namespace integrators {
 State bussStep(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h, const State& y);
 /// Two of the principal moments equal (to a relative 1e-12): a symmetric top, or a sphere.
 bool isSymmetricTop(const MassProperties& mass);
+/// What a symmetric top's flow needs: its odd principal axis (the one not in the equal pair; either end) as
+/// an index into the principal moments and as a unit vector in body axes, 1/I_r for the pair's moment I_r
+/// and 1/I_s − 1/I_r for the odd one's I_s (0 for a sphere). For a symmetric top only (isSymmetricTop).
+struct SymmetricTopAxes {
+  int odd = 2;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  double inverse_pair = 0.0;
+  double spin_coefficient = 0.0;
+};
+SymmetricTopAxes symmetricTopAxes(const MassProperties& mass);
 /// A symmetric top (two equal principal moments) turns exactly over h at fixed world L: its two flows commute.
 /// Returns false, leaving s alone, for an asymmetric body (splitting.cpp).
 bool symmetricTopFlow(const MassProperties& mass, double h, State& s);

@@ -134,14 +134,21 @@ bool isSymmetricTop(const MassProperties& mass) {
   return I(1) - I(0) <= tolerance || I(2) - I(1) <= tolerance;
 }
 
+SymmetricTopAxes symmetricTopAxes(const MassProperties& mass) {
+  const Eigen::Vector3d& I = mass.principalMoments();  // ascending
+  SymmetricTopAxes top;
+  // The odd axis s is the one not in the equal pair (either end; for a sphere its term vanishes).
+  top.odd = I(1) - I(0) <= kEqualMoments * I(2) ? 2 : 0;
+  top.axis = mass.principalAxes().col(top.odd);
+  top.inverse_pair = 1.0 / I(1);
+  top.spin_coefficient = 1.0 / I(top.odd) - top.inverse_pair;
+  return top;
+}
+
 bool symmetricTopFlow(const MassProperties& mass, double h, const Eigen::Vector3d& L_W, Eigen::Quaterniond& q_WB) {
   if (!isSymmetricTop(mass)) return false;
-  const Eigen::Vector3d& I = mass.principalMoments();  // ascending
-  const double tolerance = kEqualMoments * I(2);
-  // The odd axis s is the one not in the equal pair (either end; for a sphere its term vanishes).
-  const int odd = I(1) - I(0) <= tolerance ? 2 : 0;
-  const double I_r = I(1);
-  rotateAboutBodyAxis(mass, odd, h, 1.0 / I_r, L_W, q_WB);
+  const double I_r = mass.principalMoments()(1);
+  rotateAboutBodyAxis(mass, symmetricTopAxes(mass).odd, h, 1.0 / I_r, L_W, q_WB);
   q_WB = quaternionExp((h / I_r) * L_W) * q_WB;
   return true;
 }

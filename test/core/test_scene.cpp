@@ -273,15 +273,15 @@ TEST_P(BatchedStep, GivesEachBodyItsOwnIntegratorStepsBitForBit) {
     bodies.push_back({Model{mass, i % 2 ? damped : ForceModel{}},
                       spinning(mass, Eigen::Vector3d(0.3 * i, 2.0, -0.1 * i)), i % 2 == 1});
   }
-  // Bodies whose principal axes are not their body axes, and more spheres, one of each spinning at 300 rad/s:
-  // semi-implicit Euler's 1/|q| (a general body's) and its sine and cosine (a sphere's) then take their
-  // series in some lanes of a batch and the library's functions in another.
+  // Bodies whose principal axes are not their body axes, and more spheres and cylinders, one of each spinning
+  // at 300 rad/s: semi-implicit Euler's 1/|q| (a general body's) and its sines and cosines (a sphere's, a
+  // cylinder's) then take their series in some lanes of a batch and the library's functions in another.
   Eigen::Matrix3d full;
   full << 0.02, 0.001, -0.002, 0.001, 0.05, 0.003, -0.002, 0.003, 0.06;
   const MassProperties general = MassProperties::fromInertia(1.5, full);
-  for (int i = 0; i < 7; ++i) {
-    const MassProperties& mass = i < 5 ? general : sphere;
-    const double rate = i == 2 || i == 6 ? 300.0 : 2.0 + i;
+  for (int i = 0; i < 10; ++i) {
+    const MassProperties& mass = i < 5 ? general : (i < 7 ? sphere : cylinder);
+    const double rate = i == 2 || i == 6 || i == 9 ? 300.0 : 2.0 + i;
     bodies.push_back({Model{mass, damped}, spinning(mass, Eigen::Vector3d(0.3, -0.2 * i, 1.0).normalized() * rate), true});
   }
   Scene scene(bodies, type, 0.001);
