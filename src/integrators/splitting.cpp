@@ -147,9 +147,9 @@ SymmetricTopAxes symmetricTopAxes(const MassProperties& mass) {
 
 bool symmetricTopFlow(const MassProperties& mass, double h, const Eigen::Vector3d& L_W, Eigen::Quaterniond& q_WB) {
   if (!isSymmetricTop(mass)) return false;
-  const double I_r = mass.principalMoments()(1);
-  rotateAboutBodyAxis(mass, symmetricTopAxes(mass).odd, h, 1.0 / I_r, L_W, q_WB);
-  q_WB = quaternionExp((h / I_r) * L_W) * q_WB;
+  const SymmetricTopAxes top = symmetricTopAxes(mass);
+  rotateAboutBodyAxis(mass, top.odd, h, top.inverse_pair, L_W, q_WB);
+  q_WB = quaternionExp((h / mass.principalMoments()(1)) * L_W) * q_WB;
   return true;
 }
 
