@@ -140,8 +140,9 @@ SymmetricTopAxes symmetricTopAxes(const MassProperties& mass) {
   // The odd axis s is the one not in the equal pair (either end; for a sphere its term vanishes).
   top.odd = I(1) - I(0) <= kEqualMoments * I(2) ? 2 : 0;
   top.axis = mass.principalAxes().col(top.odd);
-  top.inverse_pair = 1.0 / I(1);
-  top.spin_coefficient = 1.0 / I(top.odd) - top.inverse_pair;
+  const Eigen::Vector3d& inverse = mass.inversePrincipalMoments();  // computed once: no division per step
+  top.inverse_pair = inverse(1);
+  top.spin_coefficient = inverse(top.odd) - top.inverse_pair;
   return top;
 }
 
