@@ -81,6 +81,7 @@ Scene::Scene(Scene&&) noexcept = default;
 Scene& Scene::operator=(Scene&&) noexcept = default;
 
 void Scene::assemble(std::size_t body) {
+  lane_order_stale_ = true;
   if (assembly_ == StepAssembly::kGeneral) {
     terms_[body] = StepTerms::all();
     return;
@@ -133,6 +134,7 @@ SceneStepResult Scene::step(std::int64_t steps) {
   const std::size_t bodies = states_.size();
   const std::size_t per_block = bodies_per_block_;
   const std::size_t blocks = (bodies + per_block - 1) / per_block;
+  if (integrators::hasLaneStep(integrator_type_) && lane_order_stale_) orderBodiesByKind();
   if (pool_->threads() > 1 && blocks > 1) {
     // Every block reports into its own slot; merged in block order, the result is the one-thread result.
     block_results_.assign(blocks, SceneStepResult());
@@ -171,23 +173,38 @@ void Scene::mergeBody(std::size_t body, std::int64_t done, StepStatus status, Sc
   merge({done, status, records_[body].divergence != Divergence::kNone}, result);
 }
 
+void Scene::orderBodiesByKind() {
+  // A body's kind: its step terms and, under semi-implicit Euler, its rotation's branch. The key orders
+  // only; stepBodiesInLanes compares the terms themselves, so a key that missed a term would cost batches,
+  // never mix kinds in one.
+  std::vector<unsigned> key(states_.size());
+  for (std::size_t body = 0; body < key.size(); ++body) {
+    const StepTerms& t = terms_[body];
+    unsigned k = static_cast<unsigned>(integrators::semiImplicitTurnKind(integrator_type_, models_[body].mass));
+    for (const bool term : {t.input, t.gravity, t.linear_damping, t.angular_damping, t.rotation, t.world_inertia}) {
+      k = 2 * k + (term ? 1 : 0);
+    }
+    key[body] = k;
+  }
+  lane_order_.resize(states_.size());
+  for (std::size_t i = 0; i < lane_order_.size(); ++i) lane_order_[i] = i;
+  std::stable_sort(lane_order_.begin(), lane_order_.end(), [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
+  lane_order_stale_ = false;
+}
+
 void Scene::stepBodiesInLanes(std::size_t begin, std::size_t end, std::int64_t steps, SceneStepResult& result) {
-  // Bodies go into batches of kLanes by their terms (a batch takes one branch of the step for all its
-  // lanes); a batch per kind is open at once, so that bodies of several kinds interleaved in the list still
-  // fill them. Kinds multiply: under semi-implicit Euler a swarm of boxes, spheres and cylinders with and
-  // without input is six, and with four open batches (as before) each new one evicted the oldest with one
-  // body in it, so that every body stepped alone (1 000 such bodies: 666 -> 468 µs per 10 steps with
-  // sixteen, docs/performance.md). Which bodies share a batch changes nothing in any body's arithmetic.
-  constexpr std::size_t kOpenBatches = 16;
+  // Bodies go into batches of kLanes by kind (a batch takes one branch of the step for all its lanes), in
+  // lane_order_, where the bodies of a kind are neighbours: each kind fills its batches, within a thread's
+  // block too, whatever the order of the body list. (Taken in list order, the six interleaved kinds of a
+  // swarm under semi-implicit Euler left most batches with one body, and blocks of 64 several part-filled
+  // ones each: docs/performance.md.) Which bodies share a batch changes nothing in any body's arithmetic.
   struct Batch {
     StepTerms terms;
     integrators::SemiImplicitTurn turn_kind{};  // semi-implicit Euler's rotation branch
     std::array<std::size_t, integrators::kLanes> bodies;
     std::size_t count = 0;
-  };
-  std::array<Batch, kOpenBatches> open;
-  std::size_t used = 0, oldest = 0;
-  const auto run = [&](Batch& batch) {
+  } batch;
+  const auto run = [&] {
     if (batch.count == 1) {
       stepLanes<double>(batch.bodies.data(), 1, steps, result);
     } else if (batch.count > 1) {
@@ -195,27 +212,19 @@ void Scene::stepBodiesInLanes(std::size_t begin, std::size_t end, std::int64_t s
     }
     batch.count = 0;
   };
-  for (std::size_t body = begin; body < end; ++body) {
+  for (std::size_t i = begin; i < end; ++i) {
+    const std::size_t body = lane_order_[i];
     if (records_[body].divergence != Divergence::kNone || collides(body)) continue;
     const integrators::SemiImplicitTurn turn_kind = integrators::semiImplicitTurnKind(integrator_type_, models_[body].mass);
-    std::size_t k = 0;
-    while (k < used && (open[k].terms != terms_[body] || open[k].turn_kind != turn_kind)) ++k;
-    if (k == used) {
-      if (used < kOpenBatches) {
-        ++used;
-      } else {  // every slot holds another kind: the oldest batch runs as it is and makes room
-        k = oldest;
-        oldest = (oldest + 1) % kOpenBatches;
-        run(open[k]);
-      }
-      open[k].terms = terms_[body];
-      open[k].turn_kind = turn_kind;
+    if (batch.count > 0 && (batch.terms != terms_[body] || batch.turn_kind != turn_kind)) run();
+    if (batch.count == 0) {
+      batch.terms = terms_[body];
+      batch.turn_kind = turn_kind;
     }
-    Batch& batch = open[k];
     batch.bodies[batch.count++] = body;
-    if (batch.count == integrators::kLanes) run(batch);
+    if (batch.count == integrators::kLanes) run();
   }
-  for (std::size_t k = 0; k < used; ++k) run(open[k]);
+  run();
 }
 
 template <class T>
