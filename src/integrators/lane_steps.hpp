@@ -555,18 +555,15 @@ RIGID_BODY_LANE_INLINE void turnIsotropic(const LaneBody<T>& b, double h, LaneSt
 
 // Semi-implicit Euler's rotation of a symmetric top by its exact flow over h at L_{n+1} (its two flows
 // commute): q ← exp(h L/I_r) ⊗ q ⊗ exp(h (1/I_s − 1/I_r) m_s u), u its odd principal axis in body axes and
-// m_s = u · Rᵀ L (docs/references.md). In the lanes, by halfAngleSeries where both of a lane's angles are
-// within its range, else by symmetricTopFlow's sines and cosines (one lane at a time, each lane's choice its
-// own).
+// m_s = u · Rᵀ L (docs/references.md), R that of q (`R`, formed for the kick too). In the lanes, by
+// halfAngleSeries where both of a lane's angles are within its range, else by symmetricTopFlow's sines and
+// cosines (one lane at a time, each lane's choice its own).
 template <class T>
-RIGID_BODY_LANE_INLINE void turnSymmetricTop(const LaneBody<T>& b, double h, LaneState<T>& next) {
+RIGID_BODY_LANE_INLINE void turnSymmetricTop(const LaneBody<T>& b, double h, const LaneRotation<T>& R,
+                                             LaneState<T>& next) {
   const LaneQuaternion<T> unturned = quaternionOf(next);
   const Vec<T>& L = next.L;
-  // Rᵀ L = q* L q = L + w t + t × q_v with t = 2 L × q_v (|q| = 1: the step's start, normalised).
-  const T qx = unturned.x, qy = unturned.y, qz = unturned.z, qw = unturned.w;
-  const Vec<T> t{2.0 * (L.y * qz - L.z * qy), 2.0 * (L.z * qx - L.x * qz), 2.0 * (L.x * qy - L.y * qx)};
-  const Vec<T> m{L.x + qw * t.x + (t.y * qz - t.z * qy), L.y + qw * t.y + (t.z * qx - t.x * qz),
-                 L.z + qw * t.z + (t.x * qy - t.y * qx)};
+  const Vec<T> m = R.s * R.R.transposeTimes(L);
   const Vec<T>& u = b.top_axis;
   const T spin = ((T{} + h) * b.top_spin_coefficient) * (u.x * m.x + u.y * m.y + u.z * m.z);  // the body turn's angle
   const T spin2 = spin * spin;
@@ -602,12 +599,13 @@ RIGID_BODY_LANE_INLINE void turnSymmetricTop(const LaneBody<T>& b, double h, Lan
 template <class T>
 RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>& b, const StepTerms& terms, double h,
                                               const LaneState<T>& y) {
-  // The kick needs ω only for angular damping. R of q_n, which the Cayley turns need, is formed once for both.
-  const bool cayley = terms.rotation && terms.world_inertia && !b.symmetric_top;
-  const LaneRotation<T> R = cayley ? LaneRotation<T>(y) : LaneRotation<T>{};
+  // The kick needs ω only for angular damping. R of q_n, which the Cayley turns and a symmetric top's flow
+  // need, is formed once for the kick and the turn.
+  const bool turn_by_R = terms.rotation && terms.world_inertia;
+  const LaneRotation<T> R = turn_by_R ? LaneRotation<T>(y) : LaneRotation<T>{};
   const Vec<T> v = b.inverse_mass * y.P;
   Vec<T> force, torque, w;  // w = ½ω
-  laneWrench(b, terms, terms.angular_damping, y, v, cayley ? &R : nullptr, force, torque, w);
+  laneWrench(b, terms, terms.angular_damping, y, v, turn_by_R ? &R : nullptr, force, torque, w);
   const T step = T{} + h;
   LaneState<T> next = y;
   next.P = y.P + step * force;
@@ -617,7 +615,7 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneSemiImplicitEulerStep(const LaneBody<T>&
   next.L = y.L + step * torque;
   if (!terms.world_inertia || b.symmetric_top) {
     if (terms.world_inertia) {
-      turnSymmetricTop(b, h, next);
+      turnSymmetricTop(b, h, R, next);
     } else {
       turnIsotropic(b, h, next);
     }
