@@ -23,6 +23,15 @@ int main(int argc, char** argv) {
     for (const std::string& name : config.unknown_parameters) {
       ROS_WARN("unknown parameter ~%s is ignored (a typo?)", name.c_str());
     }
+    // Per-body topics and services register with the ROS master one by one, at ~1 ms of the master's time
+    // each (docs/scenes.md): a scene of thousands waits tens of seconds before its first output.
+    constexpr std::size_t kManyBodies = 1000;
+    if (config.publish.per_body_topics && config.bodies.size() >= kManyBodies) {
+      ROS_WARN("rigid_body_node: %zu bodies on per-body topics: their registrations with the ROS master take "
+               "~1 ms each (10 000 bodies ~40 s) before the first output; publish/per_body_topics: false puts "
+               "the scene on bodies/odom and bodies/wrench, a few registrations in all",
+               config.bodies.size());
+    }
     node = std::make_unique<rigid_body_ros::SimulatorNode>(nh, private_nh, config);
     ROS_INFO("rigid_body_node: start-up: parameters read in %.3f s, %zu bodies' topics and services set up in %.3f s",
              (parsed - begin).toSec(), config.bodies.size(), (ros::WallTime::now() - parsed).toSec());
