@@ -383,11 +383,20 @@ RIGID_BODY_LANE_INLINE void setLane(Vec<T>& to, std::size_t i, const Eigen::Vect
   setLane(to.z, i, from.z());
 }
 
+// Entry by entry, no loop: an entry indexed by loop variables (m[r][c]) made GCC's early scalar replacement
+// of aggregates give up on the whole LaneBody, which a lone step then copied into memory and loaded back
+// (~60 constants).
 template <class T>
 RIGID_BODY_LANE_INLINE void setLane(Mat<T>& to, std::size_t i, const Eigen::Matrix3d& from) {
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) setLane(to.m[r][c], i, from(r, c));
-  }
+  setLane(to.m[0][0], i, from(0, 0));
+  setLane(to.m[0][1], i, from(0, 1));
+  setLane(to.m[0][2], i, from(0, 2));
+  setLane(to.m[1][0], i, from(1, 0));
+  setLane(to.m[1][1], i, from(1, 1));
+  setLane(to.m[1][2], i, from(1, 2));
+  setLane(to.m[2][0], i, from(2, 0));
+  setLane(to.m[2][1], i, from(2, 1));
+  setLane(to.m[2][2], i, from(2, 2));
 }
 
 // Whether any component of v is other than ±0 (a NaN too), without branches, on the bits: a double is ±0
