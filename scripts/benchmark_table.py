@@ -38,9 +38,10 @@ def main():
               "| World::update: ns per body and step |")
         print("|---|---|---|---|---|")
         for name, b in scene.items():
-            kind, method, bodies = name.split("/")[0:3]
-            if kind != "scene":
+            parts = name.split("/")
+            if len(parts) < 3 or parts[0] != "scene":  # e.g. general_body/<method>: no body count
                 continue
+            kind, method, bodies = parts[0:3]
             world = scene.get(f"world/{method}/{bodies}")
             through_world = f"{world['per_body_step'] * 1e9:.0f}" if world else "-"
             print(f"| {method} | {bodies} | {b['real_time']:.1f} | {b['per_body_step'] * 1e9:.0f} | {through_world} |")
