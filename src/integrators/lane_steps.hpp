@@ -439,12 +439,12 @@ RIGID_BODY_LANE_INLINE void loadBody(LaneBody<T>& b, std::size_t i, IntegratorTy
   if (terms.input) {
     setLane(b.force_W, i, input.world.force);
     setLane(b.torque_W, i, input.world.torque);
-    const bool body_force = nonZero(input.body.force), body_torque = nonZero(input.body.torque);
-    // A batch's lanes all hold their values (another lane's may be read); one lane's only if read (the flags).
-    if (kLaneCount<T> > 1 || body_force) setLane(b.force_B, i, input.body.force);
-    if (kLaneCount<T> > 1 || body_torque) setLane(b.torque_B, i, input.body.torque);
-    b.body_force = b.body_force || body_force;  // exactly zero, not nearly
-    b.body_torque = b.body_torque || body_torque;
+    b.body_force = b.body_force || nonZero(input.body.force);  // exactly zero, not nearly
+    b.body_torque = b.body_torque || nonZero(input.body.torque);
+    // A batch's lanes all hold their values (another lane's may be read); one lane's only where the step
+    // reads it (its flag).
+    if (kLaneCount<T> > 1 || b.body_force) setLane(b.force_B, i, input.body.force);
+    if (kLaneCount<T> > 1 || b.body_torque) setLane(b.torque_B, i, input.body.torque);
     b.world_torque = b.world_torque || nonZero(input.world.torque);
   }
   if (type != IntegratorType::kSemiImplicitEuler || !terms.rotation || !terms.world_inertia) return;
