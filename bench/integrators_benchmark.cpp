@@ -10,6 +10,7 @@
 // picks AVX-512 at run time (the two compared: docs/performance.md).
 #include <benchmark/benchmark.h>
 
+#include "general_body.hpp"
 #include "rigid_body_sim/integrators.hpp"
 #include "rigid_body_sim/kinematics.hpp"
 #include "rigid_body_sim/step_terms.hpp"
@@ -18,30 +19,9 @@ namespace {
 
 using namespace rigid_body;
 
-Model generalModel() {
-  Eigen::Matrix3d I;
-  I << 0.02, 0.001, -0.002,  //
-      0.001, 0.05, 0.003,    //
-      -0.002, 0.003, 0.06;
-  Model model{MassProperties::fromInertia(1.5, I), ForceModel{}};
-  model.forces.gravity_W = Eigen::Vector3d(0.0, 0.0, -9.81);
-  model.forces.linear_damping = 0.1;
-  model.forces.angular_damping = 0.01;
-  return model;
-}
-
-State spinningState(const MassProperties& mass) {
-  return stateFromVelocities(mass, Eigen::Vector3d(0.0, 0.0, 1.0),
-                             Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized())),
-                             Eigen::Vector3d(0.5, 0.0, 0.0), Eigen::Vector3d(1.0, 3.0, 0.5));
-}
-
-AppliedWrench generalInput() {
-  AppliedWrench input;
-  input.world.force = Eigen::Vector3d(0.1, 0.0, 15.0);
-  input.body.torque = Eigen::Vector3d(0.001, 0.0, 0.002);
-  return input;
-}
+using bench_bodies::generalInput;
+using bench_bodies::generalModel;
+using bench_bodies::spinningState;
 
 enum class Terms { kAll, kAssembled, kAssembledBaselineIsa };
 

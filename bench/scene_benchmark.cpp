@@ -11,6 +11,7 @@
 
 #include <vector>
 
+#include "general_body.hpp"
 #include "rigid_body_sim/kinematics.hpp"
 #include "rigid_body_sim/scene.hpp"
 #include "rigid_body_sim/world.hpp"
@@ -67,27 +68,12 @@ void stepScene(benchmark::State& bench, IntegratorType type, std::size_t threads
   bench.counters["bodies"] = static_cast<double>(bodies);
 }
 
-// One general body in a Scene (integrators_benchmark's: full inertia tensor, spin, gravity, linear and angular
-// damping, an input with world and body parts), a tick of 10 steps: a Scene's lone body runs the loop of its
+// The general body (general_body.hpp) alone in a Scene, a tick of 10 steps: a Scene's lone body runs the loop of its
 // method's lone kernel, where Integrator::step runs one step a call. Reported per step.
 void stepGeneralBody(benchmark::State& bench, IntegratorType type) {
-  Eigen::Matrix3d I;
-  I << 0.02, 0.001, -0.002,  //
-      0.001, 0.05, 0.003,    //
-      -0.002, 0.003, 0.06;
-  Model model{MassProperties::fromInertia(1.5, I), ForceModel{}};
-  model.forces.gravity_W = Eigen::Vector3d(0.0, 0.0, -9.81);
-  model.forces.linear_damping = 0.1;
-  model.forces.angular_damping = 0.01;
-  const State initial = stateFromVelocities(
-      model.mass, Eigen::Vector3d(0.0, 0.0, 1.0),
-      Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized())),
-      Eigen::Vector3d(0.5, 0.0, 0.0), Eigen::Vector3d(1.0, 3.0, 0.5));
-  Scene simulation({{model, initial, true}}, type, 0.001);
-  AppliedWrench input;
-  input.world.force = Eigen::Vector3d(0.1, 0.0, 15.0);
-  input.body.torque = Eigen::Vector3d(0.001, 0.0, 0.002);
-  simulation.setInput(0, input);
+  const Model model = bench_bodies::generalModel();
+  Scene simulation({{model, bench_bodies::spinningState(model.mass), true}}, type, 0.001);
+  simulation.setInput(0, bench_bodies::generalInput());
   for (auto _ : bench) {
     simulation.step(kStepsPerTick);
     benchmark::DoNotOptimize(simulation.state(0));

@@ -9,6 +9,7 @@
 
 #include <cmath>
 
+#include "general_body.hpp"
 #include "integrators/lane_steps.hpp"
 #include "rigid_body_sim/kinematics.hpp"
 #include "rigid_body_sim/step_terms.hpp"
@@ -54,19 +55,9 @@ struct GeneralBody {
   LaneState<double> y;
   StepTerms terms;
   GeneralBody(IntegratorType type) {
-    Eigen::Matrix3d I;
-    I << 0.02, 0.001, -0.002, 0.001, 0.05, 0.003, -0.002, 0.003, 0.06;
-    Model model{MassProperties::fromInertia(1.5, I), ForceModel{}};
-    model.forces.gravity_W = Eigen::Vector3d(0.0, 0.0, -9.81);
-    model.forces.linear_damping = 0.1;
-    model.forces.angular_damping = 0.01;
-    const State state = stateFromVelocities(
-        model.mass, Eigen::Vector3d(0.0, 0.0, 1.0),
-        Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized())), Eigen::Vector3d(0.5, 0.0, 0.0),
-        Eigen::Vector3d(1.0, 3.0, 0.5));
-    AppliedWrench input;
-    input.world.force = Eigen::Vector3d(0.1, 0.0, 15.0);
-    input.body.torque = Eigen::Vector3d(0.001, 0.0, 0.002);
+    const Model model = bench_bodies::generalModel();
+    const State state = bench_bodies::spinningState(model.mass);
+    const AppliedWrench input = bench_bodies::generalInput();
     terms = assembleTerms(model.mass, model.forces, state, true);
     loadBody(b, 0, type, terms, model, input);
     loadState(y, 0, state);
