@@ -758,6 +758,10 @@ RIGID_BODY_LANE_INLINE void runLanes(IntegratorType type, const LaneBody<T>& b, 
   y = state;
 }
 
+/// Every term assembled (StepTerms' defaults) as a compile-time constant: the lone kernels run a copy of their
+/// step with it where a body's terms are all on (laneStepOf says why).
+inline constexpr StepTerms kAllTerms{};
+
 /// runLanes with the general terms as constants where they are all assembled, for one lane under semi-implicit
 /// Euler, as laneStepOf runs its step (it says why): a Scene's lone general body 52 -> 47 ns a step
 /// (scene_benchmark's general_body; rk4's loop measured within 2 % so and keeps the terms as they come).
@@ -766,7 +770,6 @@ RIGID_BODY_LANE_INLINE void runLanesWithTerms(const LaneBody<T>& b, const StepTe
                                               std::int64_t steps, std::size_t count, LaneState<T>& y,
                                               std::int64_t* done, bool* running) {
   if constexpr (kLaneCount<T> == 1 && kType == IntegratorType::kSemiImplicitEuler) {
-    static constexpr StepTerms kAllTerms{};
     if (terms == kAllTerms) {
       runLanes(kType, b, kAllTerms, h, steps, count, y, done, running);
       return;
@@ -804,7 +807,6 @@ inline bool laneStepOf(const Model& model, const StepTerms& terms, const Applied
     // four stages (~50 live values) for the general body alone, free of the terms' branches (general rk4
     // 121 -> 111 ns), and of semi-implicit Euler's ~60 body constants (general step -4 %). Explicit Euler
     // loses by it (34 -> 50 ns): it takes the terms as they come.
-    static constexpr StepTerms kAllTerms{};
     next = terms == kAllTerms ? laneStep(kType, b, kAllTerms, h, y) : laneStep(kType, b, terms, h, y);
   } else {
     next = laneStep(kType, b, terms, h, y);
