@@ -46,6 +46,10 @@ struct CollisionShape {
 /// move in one step before it could pass through a thin obstacle unseen (the swept test starts beyond it).
 double innerRadius(const CollisionShape& shape);
 
+/// The radius of the smallest ball about the body frame's origin (the centre of mass) that holds the shape
+/// at its pose [m]: no point of the body moves faster than |v| + |ω| times it (the continuous test's bound).
+double outerRadius(const CollisionShape& shape);
+
 /// Throws std::invalid_argument for a shape that cannot collide: non-finite or non-positive sizes, a zero
 /// plane normal, a mesh with fewer than 4 vertices or no volume, a material out of range.
 void validateShape(const CollisionShape& shape, bool in_environment);

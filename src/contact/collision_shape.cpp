@@ -1,5 +1,6 @@
 #include "rigid_body_sim/collision_shape.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -56,6 +57,31 @@ double innerRadius(const CollisionShape& shape) {
       return 0.0;
   }
   return 0.0;
+}
+
+double outerRadius(const CollisionShape& shape) {
+  const Eigen::Vector3d& s = shape.size;
+  double about_origin = 0.0;  // about the shape frame's origin
+  switch (shape.type) {
+    case ShapeType::kBox:
+      about_origin = 0.5 * s.norm();
+      break;
+    case ShapeType::kSphere:
+      about_origin = s.x();
+      break;
+    case ShapeType::kCylinder:
+      about_origin = std::hypot(s.x(), 0.5 * s.y());
+      break;
+    case ShapeType::kCapsule:
+      about_origin = s.x() + 0.5 * s.y();
+      break;
+    case ShapeType::kMesh:
+      for (const auto& v : shape.mesh.vertices) about_origin = std::max(about_origin, v.norm());
+      break;
+    case ShapeType::kPlane:
+      return 0.0;
+  }
+  return shape.pose.translation().norm() + about_origin;
 }
 
 void validateShape(const CollisionShape& shape, bool in_environment) {

@@ -293,15 +293,6 @@ struct PairCollector : btCollisionWorld::ContactResultCallback {
   }
 };
 
-struct SweepCollector : btCollisionWorld::ClosestConvexResultCallback {
-  const btCollisionObject* self = nullptr;
-  SweepCollector(const btVector3& from, const btVector3& to) : ClosestConvexResultCallback(from, to) {}
-  bool needsCollision(btBroadphaseProxy* proxy) const override {
-    return static_cast<const btCollisionObject*>(proxy->m_clientObject) != self &&
-           ClosestConvexResultCallback::needsCollision(proxy);
-  }
-};
-
 }  // namespace
 
 double CollisionWorld::pairDistance(std::size_t a, std::size_t b, double max_distance, std::vector<ContactPoint>* points) {
@@ -320,19 +311,33 @@ double CollisionWorld::pairDistance(std::size_t a, std::size_t b, double max_dis
   return collector.smallest;
 }
 
-std::optional<SweepHit> CollisionWorld::sweep(std::size_t body, const Eigen::Vector3d& p_from,
-                                             const Eigen::Quaterniond& q_from, const Eigen::Vector3d& p_to,
-                                             const Eigen::Quaterniond& q_to) {
-  auto* shape = dynamic_cast<btConvexShape*>(impl_->shapes[body].get());
-  if (shape == nullptr) return std::nullopt;
-  const btTransform from = btTransform(toBt(q_from), toBt(p_from)) * impl_->body_offsets[body];
-  const btTransform to = btTransform(toBt(q_to), toBt(p_to)) * impl_->body_offsets[body];
-  SweepCollector collector(from.getOrigin(), to.getOrigin());
-  collector.self = impl_->objects[body].get();
-  impl_->world.convexSweepTest(shape, from, to, collector, 0.0);
-  if (!collector.hasHit()) return std::nullopt;
-  return SweepHit{collector.m_closestHitFraction,
-                  static_cast<std::size_t>(collector.m_hitCollisionObject->getUserIndex())};
+namespace {
+
+struct BoxQuery : btBroadphaseAabbCallback {
+  std::vector<std::size_t>* objects = nullptr;
+  std::size_t self = 0;
+  bool process(const btBroadphaseProxy* proxy) override {
+    const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
+    const auto index = static_cast<std::size_t>(object->getUserIndex());
+    if (index != self) objects->push_back(index);
+    return true;
+  }
+};
+
+}  // namespace
+
+void CollisionWorld::objectsNear(std::size_t self, const Eigen::Vector3d& low, const Eigen::Vector3d& high,
+                                 std::vector<std::size_t>& objects) const {
+  objects.clear();
+  BoxQuery query;
+  query.objects = &objects;
+  query.self = self;
+  impl_->broadphase.aabbTest(toBt(low), toBt(high), query);
+  // The box reaches the solid side n·x ≤ offset where its lowest corner along n does.
+  const Eigen::Vector3d centre = 0.5 * (low + high), half = 0.5 * (high - low);
+  for (const Impl::Plane& plane : impl_->planes) {
+    if (plane.normal.dot(centre) - plane.normal.cwiseAbs().dot(half) <= plane.offset) objects.push_back(plane.object);
+  }
 }
 
 void CollisionWorld::tangentBasis(const Eigen::Vector3d& normal, Eigen::Vector3d& t1, Eigen::Vector3d& t2) {

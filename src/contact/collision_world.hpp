@@ -1,6 +1,6 @@
 // The collision library behind the contact step: Bullet's collision module (double precision), used for what
 // it is made for: a dynamic AABB tree broad phase, narrow phases per shape pair with persistent contact
-// manifolds (up to four points a pair, kept from step to step), pair distances and swept tests.
+// manifolds (up to four points a pair, kept from step to step), pair distances and box queries.
 // Nothing of Bullet leaves this file pair; the rest of the core sees Eigen types.
 #pragma once
 
@@ -8,7 +8,6 @@
 #include <Eigen/Geometry>
 #include <cstddef>
 #include <memory>
-#include <optional>
 #include <vector>
 
 #include "rigid_body_sim/collision_shape.hpp"
@@ -25,12 +24,6 @@ struct ContactPoint {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< from b towards a, unit
   double distance = 0.0;                              ///< signed: < 0 when penetrating [m]
   int feature = -1;  ///< against a half-space: which feature of the body's shape (the same from step to step)
-};
-
-/// A swept test's first hit: the fraction of the straight motion and the object hit.
-struct SweepHit {
-  double fraction = 1.0;
-  std::size_t object = 0;
 };
 
 class CollisionWorld {
@@ -60,10 +53,10 @@ class CollisionWorld {
   /// none if they are farther. Returns the smallest signed distance, or +max_distance.
   double pairDistance(std::size_t a, std::size_t b, double max_distance, std::vector<ContactPoint>* points);
 
-  /// Sweeps body i's shape along the straight motion from one pose to another (orientation interpolated)
-  /// against every other object; the first hit, if any.
-  std::optional<SweepHit> sweep(std::size_t body, const Eigen::Vector3d& p_from, const Eigen::Quaterniond& q_from,
-                                const Eigen::Vector3d& p_to, const Eigen::Quaterniond& q_to);
+  /// Every object but `self` whose bounding box in the broad phase (as of the last detect) meets the box
+  /// [low, high], and every half-space whose solid side the box reaches, into `objects` (cleared first).
+  void objectsNear(std::size_t self, const Eigen::Vector3d& low, const Eigen::Vector3d& high,
+                   std::vector<std::size_t>& objects) const;
 
   /// The tangent basis the friction impulses of a point are expressed in (a function of the normal alone,
   /// so that it is the same from step to step while the normal is).

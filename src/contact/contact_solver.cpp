@@ -1,5 +1,6 @@
 #include "contact_solver.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
@@ -17,6 +18,38 @@ inline void applyImpulse(SolverBody& a, SolverBody& b, const SolverContact& c, c
   a.w += c.response_a * coefficients;
   b.v -= b.inverse_mass * linear;
   b.w -= c.response_b * coefficients;
+}
+
+// Coulomb's law at one point, given the sticking impulse f* outside the disc |f| ≤ L: the impulse on the disc
+// that leaves the least slip energy ½ s⁺ᵀ K⁻¹ s⁺ = ½ (f − f*)ᵀ K (f − f*), K the slip change per impulse
+// (docs/references.md, "Friction on the disc"). Its optimality condition K (f − f*) = −λ f says s⁺ = −λ f:
+// the impulse opposes the slip it leaves (maximal dissipation). So f = (K + λ)⁻¹ K f*, with λ ≥ 0 the root of
+// |f(λ)| = L, found by Newton's method on 1/|f(λ)| − 1/L (nearly linear in λ; from λ = 0 it rises
+// monotonically to the root, as for a trust region's secular equation, Moré & Sorensen 1983). Each point's
+// update then lowers the bodies' kinetic energy, so the sweeps descend to a sticking solution where one exists.
+Eigen::Vector2d ontoFrictionDisc(const Eigen::Vector2d& sticking, const Eigen::Matrix2d& response, double limit) {
+  if (!(limit > 0.0)) return Eigen::Vector2d::Zero();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen;
+  eigen.computeDirect(response);
+  const Eigen::Vector2d k = eigen.eigenvalues().cwiseMax(0.0);
+  const Eigen::Vector2d g = eigen.eigenvectors().transpose() * sticking;
+  const Eigen::Vector2d kg = k.cwiseProduct(g);
+  double lambda = 0.0;
+  Eigen::Vector2d f = kg;  // in the eigenbasis, at λ = 0 (= g where K is regular)
+  for (int i = 0; i < 40; ++i) {
+    double dr = 0.0;  // d|f|/dλ · |f|
+    for (int j = 0; j < 2; ++j) {
+      const double denominator = k[j] + lambda;
+      f[j] = denominator > 0.0 ? kg[j] / denominator : 0.0;  // no slip response along it: no impulse
+      if (denominator > 0.0) dr -= f[j] * f[j] / denominator;
+    }
+    const double r = f.norm();
+    if (!(r > limit * (1.0 + 1e-15)) || !(dr < 0.0)) break;
+    lambda += (1.0 / r - 1.0 / limit) * r * r * r / dr;
+  }
+  const double r = f.norm();
+  const Eigen::Vector2d on_disc = r > 0.0 ? Eigen::Vector2d(f * (limit / r)) : Eigen::Vector2d::Zero();
+  return eigen.eigenvectors() * on_disc;
 }
 
 }  // namespace
@@ -47,6 +80,7 @@ void prepareContacts(std::vector<SolverContact>& contacts, std::vector<SolverBod
     c.normal_mass = K(0, 0) > 0.0 ? 1.0 / K(0, 0) : 0.0;
     const Eigen::Matrix2d k_t = K.bottomRightCorner<2, 2>();
     c.tangent_mass = k_t.determinant() > 0.0 ? Eigen::Matrix2d(k_t.inverse()) : Eigen::Matrix2d::Zero();
+    c.tangent_response = k_t;
     // Newton's law: the normal speed after is −e times the speed before, for approaches fast enough to bounce.
     const double approach = c.n.dot(relativeVelocity(c, bodies));
     c.target_speed = 0.0;
@@ -72,7 +106,7 @@ bool solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBod
       // Normal: v_n ≥ target, impulse ≥ 0 (a contact pushes, never pulls).
       const Eigen::Vector3d dv = a.v - b.v;
       const double v_n = c.n.dot(dv) + c.cross_a.col(0).dot(a.w) - c.cross_b.col(0).dot(b.w);
-      const double normal = std::max(0.0, c.normal_impulse - c.normal_mass * (v_n - c.target_speed));
+      const double normal = std::max(c.normal_floor, c.normal_impulse - c.normal_mass * (v_n - c.target_speed));
       const double dn = normal - c.normal_impulse;
       c.normal_impulse = normal;
       if (dn != 0.0) applyImpulse(a, b, c, dn * c.n, Eigen::Vector3d(dn, 0.0, 0.0));
@@ -85,11 +119,7 @@ bool solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBod
       c.slip_squared = slip.squaredNorm();
       Eigen::Vector2d friction = c.friction_impulse - c.tangent_mass * slip;
       const double limit = c.friction * c.normal_impulse;
-      if (friction.squaredNorm() > limit * limit) {
-        const double slip_speed = slip.norm();
-        friction = slip_speed > 0.0 ? Eigen::Vector2d(-limit / slip_speed * slip)
-                                    : Eigen::Vector2d(friction * (limit / friction.norm()));
-      }
+      if (friction.squaredNorm() > limit * limit) friction = ontoFrictionDisc(friction, c.tangent_response, limit);
       const Eigen::Vector2d df = friction - c.friction_impulse;
       c.friction_impulse = friction;
       if (!df.isZero(0.0)) applyImpulse(a, b, c, df.x() * c.t1 + df.y() * c.t2, Eigen::Vector3d(0.0, df.x(), df.y()));
@@ -107,6 +137,101 @@ bool solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBod
     bodies[c.b].dP -= impulse, bodies[c.b].dL -= c.cross_b * coefficients;
   }
   return converged;
+}
+
+namespace {
+
+// The bodies' velocities and summed impulses at one moment of an impact.
+struct ImpactPhase {
+  std::vector<Eigen::Vector3d> v, w, dP, dL;
+  void take(const std::vector<SolverBody>& bodies) {
+    v.resize(bodies.size()), w.resize(bodies.size()), dP.resize(bodies.size()), dL.resize(bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      v[i] = bodies[i].v, w[i] = bodies[i].w, dP[i] = bodies[i].dP, dL[i] = bodies[i].dL;
+    }
+  }
+};
+
+// The change of kinetic energy between two moments, ΔT = ½ Σ (v₀ + v₁)·ΔP + (ω₀ + ω₁)·ΔL (M Δv = ΔP and
+// I Δω = ΔL, I constant over the instant), split as ΔT(α) = α a + α² b for the change scaled by α.
+void energyTerms(const ImpactPhase& from, const ImpactPhase& to, double& a, double& b) {
+  a = 0.0, b = 0.0;
+  for (std::size_t i = 0; i < from.v.size(); ++i) {
+    const Eigen::Vector3d dP = to.dP[i] - from.dP[i], dL = to.dL[i] - from.dL[i];
+    a += from.v[i].dot(dP) + from.w[i].dot(dL);
+    b += 0.5 * ((to.v[i] - from.v[i]).dot(dP) + (to.w[i] - from.w[i]).dot(dL));
+  }
+}
+
+// The largest α in [0, 1] with `base` + α a + α² b ≤ 0 (b ≥ 0, base ≤ 0): 1 if it holds there.
+double largestShare(double base, double a, double b) {
+  if (base + a + b <= 0.0) return 1.0;
+  if (!(b > 0.0)) return a < 0.0 ? std::min(1.0, -base / a) : 0.0;
+  const double root = (-a + std::sqrt(std::max(0.0, a * a - 4.0 * b * base))) / (2.0 * b);
+  return std::clamp(root, 0.0, 1.0);
+}
+
+// Sets the bodies and contacts to the moment `from` plus α of the way to `to`.
+void scaleBack(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const ImpactPhase& from,
+               const ImpactPhase& to, const std::vector<Eigen::Vector3d>& impulses_from, double alpha) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    bodies[i].v = from.v[i] + alpha * (to.v[i] - from.v[i]);
+    bodies[i].w = from.w[i] + alpha * (to.w[i] - from.w[i]);
+    bodies[i].dP = from.dP[i] + alpha * (to.dP[i] - from.dP[i]);
+    bodies[i].dL = from.dL[i] + alpha * (to.dL[i] - from.dL[i]);
+  }
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    SolverContact& c = contacts[k];
+    const Eigen::Vector3d& p0 = impulses_from[k];
+    c.normal_impulse = p0.x() + alpha * (c.normal_impulse - p0.x());
+    c.friction_impulse = p0.tail<2>() + alpha * (c.friction_impulse - p0.tail<2>());
+  }
+}
+
+}  // namespace
+
+void solveImpact(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options) {
+  ImpactPhase before, compressed, restored;
+  for (SolverBody& body : bodies) body.dP.setZero(), body.dL.setZero();
+  before.take(bodies);
+  // Compression: every point stopped (e = 0); what restitution each point has left waits for the next phase.
+  std::vector<double> restitution(contacts.size());
+  std::vector<Eigen::Vector3d> zero(contacts.size(), Eigen::Vector3d::Zero()), compression(contacts.size());
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    restitution[k] = contacts[k].target_speed > 0.0 ? contacts[k].restitution : 0.0;
+    contacts[k].target_speed = 0.0;
+  }
+  solveVelocities(contacts, bodies, options);
+  compressed.take(bodies);
+  double a = 0.0, b = 0.0;
+  energyTerms(before, compressed, a, b);
+  if (a + b > 0.0) {  // an unconverged compression that would gain: scaled back, and no restitution
+    scaleBack(contacts, bodies, before, compressed, zero, largestShare(0.0, a, b));
+    return;
+  }
+  const double compression_change = a + b;  // ≤ 0
+  // Restitution: each point's normal impulse at least (1 + e) p_c, non-penetration kept, friction on the
+  // disc of the whole normal impulse.
+  bool any = false;
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    SolverContact& c = contacts[k];
+    compression[k] = Eigen::Vector3d(c.normal_impulse, c.friction_impulse.x(), c.friction_impulse.y());
+    const double extra = restitution[k] * c.normal_impulse;
+    c.normal_floor = c.normal_impulse + extra;
+    if (!(extra > 0.0)) continue;
+    any = true;
+    c.normal_impulse += extra;
+    bodies[c.a].v += bodies[c.a].inverse_mass * extra * c.n, bodies[c.a].w += extra * c.response_a.col(0);
+    bodies[c.b].v -= bodies[c.b].inverse_mass * extra * c.n, bodies[c.b].w -= extra * c.response_b.col(0);
+  }
+  if (any) {
+    solveVelocities(contacts, bodies, options);
+    restored.take(bodies);
+    energyTerms(compressed, restored, a, b);
+    const double alpha = largestShare(compression_change, a, b);
+    if (alpha < 1.0) scaleBack(contacts, bodies, compressed, restored, compression, alpha);
+  }
+  for (SolverContact& c : contacts) c.normal_floor = 0.0;
 }
 
 void projectPositions(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, int iterations,

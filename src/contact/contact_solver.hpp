@@ -48,12 +48,14 @@ struct SolverContact {
   bool anchored = false;
   Eigen::Vector2d anchor_gap = Eigen::Vector2d::Zero();  ///< [m]
   double slip_squared = 0.0;  ///< |tangential relative velocity|² before the last sweep's friction update [m²/s²]
-  double normal_impulse = 0.0;                                 ///< accumulated [N s], ≥ 0
+  double normal_floor = 0.0;   ///< the least normal impulse the solve may end with (an impact's restitution) [N s]
+  double normal_impulse = 0.0;                                 ///< accumulated [N s], ≥ normal_floor
   Eigen::Vector2d friction_impulse = Eigen::Vector2d::Zero();  ///< accumulated [N s], |·| ≤ μ normal_impulse
   // Made by prepareContacts: r × d and I⁻¹(r × d) for d = n, t1, t2 (columns), and the effective masses.
   Eigen::Matrix3d cross_a, cross_b, response_a, response_b;
   double normal_mass = 0.0;                                ///< 1 / (n·K n)
   Eigen::Matrix2d tangent_mass = Eigen::Matrix2d::Zero();  ///< (T K Tᵀ)⁻¹ for the two tangents
+  Eigen::Matrix2d tangent_response = Eigen::Matrix2d::Zero();  ///< T K Tᵀ: slip change per friction impulse
 };
 
 /// How a solve treats the approach velocity.
@@ -78,6 +80,15 @@ void prepareContacts(std::vector<SolverContact>& contacts, std::vector<SolverBod
 /// then each body's dP and dL are summed from the contacts' impulses. Returns whether it converged (a
 /// sweep changed no impulse by more than rounding) before the iterations ran out.
 bool solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options);
+
+/// An impact at one instant: Poisson's restitution with Coulomb friction, bounded in energy (docs/references.md,
+/// "An impact that never creates energy"). A compression solve (every point stopped, e = 0) gives each point its
+/// compression impulse p_c; a restitution solve then holds each point's normal impulse at (1 + e) p_c or more
+/// (e only where the approach beat the restitution threshold) with friction on the larger disc. Where the two
+/// together would raise the bodies' kinetic energy, the restitution phase is scaled back to the largest share
+/// that does not (a root of a quadratic: the energy is quadratic in a scaled impulse). Frictionless single
+/// points keep Newton's v⁺ₙ = −e v⁻ₙ exactly. Each body's dP and dL are the impact's total.
+void solveImpact(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options);
 
 /// Position projection: moves bodies apart along the normals until no penetration beyond `slop` remains
 /// (a fraction `correction` of it per sweep), and brings an anchored contact's anchors together in the

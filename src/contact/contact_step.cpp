@@ -13,8 +13,7 @@ namespace contact {
 
 namespace {
 
-// Points of one pair this close to its deepest take part in a located impact together (a face landing flat
-// meets the ground at all its corners at once) [m].
+// The least reach of a located impact's patch beyond its deepest point [m] (the slop, where it is larger).
 constexpr double kImpactPointTolerance = 1e-6;
 // The farthest apart a pair's distance is evaluated while an impact is located [m].
 constexpr double kDistanceRange = 1e3;
@@ -22,8 +21,6 @@ constexpr double kDistanceRange = 1e3;
 constexpr int kMaxRootIterations = 80;
 // What distanceAfter answers when the partial step fails.
 constexpr double kNoDistance = std::numeric_limits<double>::quiet_NaN();
-// A body sweeps its motion when it moves farther than this fraction of its inner radius in a step.
-constexpr double kSweepFraction = 0.5;
 // Bodies farther than this from the origin leave the contact world until they come back [m]: double
 // precision still resolves 1e-10 m there, and nothing past it can overflow Bullet's bounding boxes.
 constexpr double kContactRange = 1e6;
@@ -87,6 +84,7 @@ ContactStep::ContactStep(const ContactSetup& setup, const std::vector<std::size_
     curved_.push_back(isCurved(shapes.back().type));
     names_.push_back(shapes.back().name.empty() ? "body " + std::to_string(body) : shapes.back().name);
     inner_radius_.push_back(innerRadius(shapes.back()));
+    outer_radius_.push_back(outerRadius(shapes.back()));
   }
   for (std::size_t i = 0; i < setup.environment.size(); ++i) {
     materials_.push_back(setup.environment[i].material);
@@ -101,6 +99,9 @@ ContactStep::ContactStep(const ContactSetup& setup, const std::vector<std::size_
   solver_of_.assign(n, kUnassigned);
   contacts_.resize(n);
   outside_.assign(n, 0);
+  fast_.assign(n, 0);
+  swept_low_.resize(n);
+  swept_high_.resize(n);
 }
 
 std::uint64_t ContactStep::pairKey(std::size_t a, std::size_t b) const {
@@ -175,6 +176,23 @@ void ContactStep::restart(const std::vector<State>& states) {
 
 void ContactStep::step(SceneBodies& bodies, const std::vector<char>& running, double h,
                        std::vector<StepStatus>& failed) {
+  stepSplitting(bodies, running, h, failed, 0);
+}
+
+void ContactStep::stepSplitting(SceneBodies& bodies, const std::vector<char>& running, double h,
+                                std::vector<StepStatus>& failed, int splits) {
+  // A body that would move farther than it is thick, with something near its path, steps in halves (each
+  // half decides again): docs/contact.md, "No tunnelling".
+  if (settings_.continuous && splits < kMaxStepSplits && needsShorterStep(bodies, running, h)) {
+    stepSplitting(bodies, running, 0.5 * h, failed, splits + 1);
+    stepSplitting(bodies, running, 0.5 * h, failed, splits + 1);
+    return;
+  }
+  stepWhole(bodies, running, h, failed);
+}
+
+void ContactStep::stepWhole(SceneBodies& bodies, const std::vector<char>& running, double h,
+                            std::vector<StepStatus>& failed) {
   const std::size_t n = colliders_.size();
   // 1. Free motion: every colliding body by its own integrator, as if nothing touched it.
   for (std::size_t k = 0; k < n; ++k) {
@@ -192,10 +210,10 @@ void ContactStep::step(SceneBodies& bodies, const std::vector<char>& running, do
   detectPoints();
   // 2. Impacts that begin within the step, each alone on its bodies, are resolved at their time.
   if (settings_.event_location || settings_.continuous) {
-    findCandidates(bodies, running);
+    findCandidates(bodies, running, h);
     bool any = false;
     for (const Candidate& candidate : candidates_) any = resolveImpact(bodies, candidate, h) || any;
-    if (any) {
+    if (any || !candidates_.empty()) {
       placeAll(bodies.states);
       detectPoints();
     }
@@ -223,10 +241,19 @@ void ContactStep::step(SceneBodies& bodies, const std::vector<char>& running, do
   }
 }
 
-void ContactStep::findCandidates(SceneBodies& bodies, const std::vector<char>& running) {
+void ContactStep::findCandidates(SceneBodies& bodies, const std::vector<char>& running, double h) {
   candidates_.clear();
   engaged_.clear();
   std::fill(engagement_.begin(), engagement_.end(), 0);
+  // A body that moves far in the step is tested along its whole path against everything near it (the
+  // continuous test); its impacts come first, and a body takes part in one located impact a step.
+  if (settings_.continuous) findFastImpacts(bodies, running, h);
+  for (const Candidate& c : candidates_) {
+    for (std::size_t object : {c.a, c.b}) {
+      if (world_->isBody(object)) engagement_[object] = 2;
+    }
+  }
+  const std::size_t fast_impacts = candidates_.size();
   for (const ContactPoint& point : points_) {
     const std::uint64_t key = pairKey(point.a, point.b);
     const bool touching = wasTouching(key);
@@ -236,24 +263,10 @@ void ContactStep::findCandidates(SceneBodies& bodies, const std::vector<char>& r
     engaged_.push_back(key);
     if (world_->isBody(point.a)) ++engagement_[point.a];
     if (world_->isBody(point.b)) ++engagement_[point.b];
-    if (!touching && settings_.event_location) candidates_.push_back({point.a, point.b, -1.0});
-  }
-  // A body that moved farther than its inner radius allows may have passed through something thin.
-  if (settings_.continuous) {
-    for (std::size_t k = 0; k < colliders_.size(); ++k) {
-      const State& before = start_[k];
-      const State& after = bodies.states[colliders_[k]];
-      if (!running[k] || engagement_[k] != 0 || outside_[k]) continue;
-      if ((after.p_WB - before.p_WB).norm() <= kSweepFraction * inner_radius_[k]) continue;
-      const auto hit = world_->sweep(k, before.p_WB, before.q_WB, after.p_WB, after.q_WB);
-      if (!hit || hit->fraction <= 0.0 || wasTouching(pairKey(k, hit->object))) continue;
-      candidates_.push_back({k, hit->object, hit->fraction});
-      ++engagement_[k];
-      if (world_->isBody(hit->object)) ++engagement_[hit->object];
-    }
+    if (!touching && settings_.event_location) candidates_.push_back({point.a, point.b, 0.0, h, 0.0, 0.0, false});
   }
   // Only an impact alone on its bodies is located: several at once are the solver's.
-  candidates_.erase(std::remove_if(candidates_.begin(), candidates_.end(),
+  candidates_.erase(std::remove_if(candidates_.begin() + static_cast<std::ptrdiff_t>(fast_impacts), candidates_.end(),
                                    [&](const Candidate& c) {
                                      return (world_->isBody(c.a) && engagement_[c.a] != 1) ||
                                             (world_->isBody(c.b) && engagement_[c.b] != 1);
@@ -261,8 +274,10 @@ void ContactStep::findCandidates(SceneBodies& bodies, const std::vector<char>& r
                     candidates_.end());
 }
 
-double ContactStep::distanceAfter(SceneBodies& bodies, const Candidate& c, double tau, bool keep_states) {
-  for (std::size_t object : {c.a, c.b}) {
+double ContactStep::distanceAfter(SceneBodies& bodies, std::size_t a, std::size_t b, double tau, bool keep_states,
+                                  State* at) {
+  for (std::size_t side = 0; side < 2; ++side) {
+    const std::size_t object = side == 0 ? a : b;
     if (!world_->isBody(object)) continue;
     const std::size_t body = colliders_[object];
     State state = start_[object];
@@ -274,38 +289,27 @@ double ContactStep::distanceAfter(SceneBodies& bodies, const Candidate& c, doubl
     }
     world_->setPose(object, state.p_WB, state.q_WB);
     if (keep_states) bodies.states[body] = state;
+    if (at != nullptr) at[side] = state;
   }
-  return world_->pairDistance(c.a, c.b, kDistanceRange, nullptr);
+  return world_->pairDistance(a, b, kDistanceRange, nullptr);
 }
 
-bool ContactStep::resolveImpact(SceneBodies& bodies, const Candidate& c, double h) {
-  // Bracket the first touch: apart at the start, touching at the end (or at the swept hit).
-  double lo = 0.0, hi = h;
-  double f_lo = distanceAfter(bodies, c, 0.0, false);
-  if (!(f_lo > 0.0) || std::isnan(f_lo)) return false;  // already touching at the start: the solver's
-  double f_hi = distanceAfter(bodies, c, hi, false);
-  if (std::isnan(f_hi)) return restoreAfterFailedLocation(bodies, c);
-  if (c.fraction >= 0.0 && f_hi > 0.0) {
-    // Passed through within the step: the swept hit is where it met the obstacle; look just beyond it.
-    hi = std::min(h, c.fraction * h * (1.0 + 1e-9));
-    f_hi = distanceAfter(bodies, c, hi, false);
-    if (f_hi > 0.0) {
-      lo = hi, f_lo = f_hi;
-      hi = std::min(h, hi + 0.5 * (h - hi));
-      for (int i = 0; i < 40 && f_hi > 0.0 && hi < h; ++i) {
-        lo = hi, f_lo = f_hi;
-        hi = hi + 0.5 * (h - hi);
-        f_hi = distanceAfter(bodies, c, hi, false);
-      }
-    }
+bool ContactStep::resolveImpact(SceneBodies& bodies, Candidate c, double h) {
+  if (!c.swept) {
+    // Bracket the first touch: apart at the start, touching at the end.
+    c.f_lo = distanceAfter(bodies, c.a, c.b, c.lo, false);
+    if (!(c.f_lo > 0.0) || std::isnan(c.f_lo)) return false;  // already touching at the start: the solver's
+    c.f_hi = distanceAfter(bodies, c.a, c.b, c.hi, false);
+    if (!(c.f_hi <= 0.0)) return restoreAfterFailedLocation(bodies, c);
   }
-  if (!(f_hi <= 0.0)) return restoreAfterFailedLocation(bodies, c);
-  // Regula falsi, Illinois variant: keeps the bracket, converges superlinearly on a smooth distance.
+  double lo = c.lo, hi = c.hi, f_lo = c.f_lo, f_hi = c.f_hi;
+  // Regula falsi, Illinois variant: keeps the bracket, converges superlinearly on a smooth distance. A swept
+  // impact's bracket may already end within reach (conservative advancement stops short of the touch).
   int side = 0;
-  for (int i = 0; i < kMaxRootIterations && hi - lo > settings_.event_tolerance; ++i) {
+  for (int i = 0; i < kMaxRootIterations && f_hi < 0.0 && hi - lo > settings_.event_tolerance; ++i) {
     double tau = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
     if (!(tau > lo && tau < hi)) tau = 0.5 * (lo + hi);
-    const double f = distanceAfter(bodies, c, tau, false);
+    const double f = distanceAfter(bodies, c.a, c.b, tau, false);
     if (std::isnan(f)) return restoreAfterFailedLocation(bodies, c);
     if (f > 0.0) {
       lo = tau, f_lo = f;
@@ -318,14 +322,17 @@ bool ContactStep::resolveImpact(SceneBodies& bodies, const Candidate& c, double 
     }
   }
   // At the touch (the bracket's touching end): the points of first contact and the impact.
-  distanceAfter(bodies, c, hi, true);
-  const double deepest = world_->pairDistance(c.a, c.b, kImpactPointTolerance, &pair_points_);
+  distanceAfter(bodies, c.a, c.b, hi, true);
+  // The patch that meets: every point within the slop of the deepest (a face landing on a face meets at all
+  // its corners at once; the narrow phase's perturbed points of a face lie up to ~1e-5 m apart in distance).
+  const double patch = std::max(kImpactPointTolerance, settings_.penetration_slop);
+  const double deepest = world_->pairDistance(c.a, c.b, std::max(0.0, f_hi) + patch, &pair_points_);
   solver_contacts_.clear();
   solver_points_.clear();
   solver_anchors_.clear();
   startSolverLists();
   for (const ContactPoint& point : pair_points_) {
-    if (point.distance <= deepest + kImpactPointTolerance) addContact(point, bodies, false);
+    if (point.distance <= deepest + patch) addContact(point, bodies, false);
   }
   if (solver_contacts_.empty()) {  // nothing within reach after all: the rest of the step is free motion
     for (std::size_t object : {c.a, c.b}) {
@@ -336,27 +343,31 @@ bool ContactStep::resolveImpact(SceneBodies& bodies, const Candidate& c, double 
     }
     return true;
   }
+  applyImpact(bodies, c, hi, h);
+  return true;
+}
+
+void ContactStep::applyImpact(SceneBodies& bodies, const Candidate& c, double tau, double h) {
   SolveOptions options;
   options.iterations = settings_.iterations;
   options.restitution_threshold = settings_.restitution_threshold;
   prepareContacts(solver_contacts_, solver_bodies_, options);
   const double approach = -solver_contacts_.front().n.dot(relativeVelocity(solver_contacts_.front(), solver_bodies_));
-  solveVelocities(solver_contacts_, solver_bodies_, options);
+  solveImpact(solver_contacts_, solver_bodies_, options);
   // Momenta change by the impulses; the rest of the step is free motion again.
   for (std::size_t s = 1; s < solver_bodies_.size(); ++s) {  // 0 is the environment
     const std::size_t k = solver_body_of_[s], body = colliders_[k];
     State& state = bodies.states[body];
     state.P_W += solver_bodies_[s].dP;
     state.L_W += solver_bodies_[s].dL;
-    bodies.integrators[body].step(bodies.models[body], bodies.terms[body], bodies.inputs[body], h - hi, state);
+    bodies.integrators[body].step(bodies.models[body], bodies.terms[body], bodies.inputs[body], h - tau, state);
     solver_of_[k] = kUnassigned;
   }
-  ++(c.fraction >= 0.0 ? statistics_.swept_impacts : statistics_.located_impacts);
+  ++(c.swept ? statistics_.swept_impacts : statistics_.located_impacts);
   if (impacts_.size() == kImpactLog) impacts_.erase(impacts_.begin());
   const std::size_t body_object = world_->isBody(c.a) ? c.a : c.b;
-  impacts_.push_back({start_[body_object].t + hi, colliders_[body_object], partner(body_object == c.a ? c.b : c.a),
+  impacts_.push_back({start_[body_object].t + tau, colliders_[body_object], partner(body_object == c.a ? c.b : c.a),
                       approach});
-  return true;
 }
 
 bool ContactStep::restoreAfterFailedLocation(SceneBodies& bodies, const Candidate& c) {

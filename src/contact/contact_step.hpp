@@ -56,9 +56,13 @@ class ContactStep {
   static constexpr std::size_t kImpactLog = 64;
 
  private:
+  // A pair that may meet within the step, and the bracket of its first touch along the integrated path:
+  // apart at lo, touching (or within kImpactPointTolerance) at hi; `swept` when the continuous test found it.
   struct Candidate {
-    std::size_t a, b;    // collision objects
-    double fraction;     // swept hit fraction (< 0: locate by the root of the distance)
+    std::size_t a, b;  // collision objects
+    double lo, hi;     // [s] within the step
+    double f_lo, f_hi; // signed distances there [m]
+    bool swept;
   };
   std::uint64_t pairKey(std::size_t a, std::size_t b) const;
   bool wasTouching(std::uint64_t key) const;
@@ -67,9 +71,25 @@ class ContactStep {
   void placeAll(const std::vector<State>& states);
   void detectPoints();
   bool restoreAfterFailedLocation(SceneBodies& bodies, const Candidate& candidate);
-  void findCandidates(SceneBodies& bodies, const std::vector<char>& running);
-  bool resolveImpact(SceneBodies& bodies, const Candidate& candidate, double h);
-  double distanceAfter(SceneBodies& bodies, const Candidate& candidate, double tau, bool keep_states);
+  void findCandidates(SceneBodies& bodies, const std::vector<char>& running, double h);
+  bool resolveImpact(SceneBodies& bodies, Candidate candidate, double h);
+  void applyImpact(SceneBodies& bodies, const Candidate& candidate, double tau, double h);
+  // The pair's signed distance after a partial step tau of both from the step's start (NaN if the partial
+  // step fails); `keep_states` leaves the bodies there, `at` (two entries) receives the states.
+  double distanceAfter(SceneBodies& bodies, std::size_t a, std::size_t b, double tau, bool keep_states,
+                       State* at = nullptr);
+  void stepSplitting(SceneBodies& bodies, const std::vector<char>& running, double h, std::vector<StepStatus>& failed,
+                     int splits);
+  void stepWhole(SceneBodies& bodies, const std::vector<char>& running, double h, std::vector<StepStatus>& failed);
+  // The continuous test (continuous_collision.cpp): steps split while a body would move farther than it is
+  // thick near something, and conservative advancement along the integrated path.
+  static constexpr int kMaxStepSplits = 8;  // at most 2⁸ = 256 parts of a step
+  bool needsShorterStep(const SceneBodies& bodies, const std::vector<char>& running, double h);
+  bool movesFast(std::size_t k, const State& after) const;
+  void sweptBox(const SceneBodies& bodies, std::size_t k, double h, Eigen::Vector3d& low, Eigen::Vector3d& high) const;
+  void findFastImpacts(SceneBodies& bodies, const std::vector<char>& running, double h);
+  bool advanceToImpact(SceneBodies& bodies, std::size_t a, std::size_t b, double h, Candidate& hit);
+  double closingSpeedBound(const SceneBodies& bodies, std::size_t object, const State& at) const;
   void startSolverLists();
   std::size_t solverIndex(const SceneBodies& bodies, std::size_t object);
   void addContact(const ContactPoint& point, const SceneBodies& bodies, bool resting);
@@ -81,6 +101,10 @@ class ContactStep {
   std::vector<char> curved_;                // per collision object: a sphere, cylinder or capsule (it can roll)
   std::vector<std::string> names_;          // per collision object, for messages
   std::vector<double> inner_radius_;        // per colliding body
+  std::vector<double> outer_radius_;        // per colliding body, about its centre of mass
+  std::vector<char> fast_;                  // per colliding body: moved far enough in the step to sweep
+  std::vector<Eigen::Vector3d> swept_low_, swept_high_;  // per colliding body: the box its step sweeps
+  std::vector<std::size_t> near_;           // scratch: objects near a swept box
   std::vector<char> outside_;               // per colliding body: beyond the contact range
   ContactSettings settings_;
   IntegratorType integrator_type_;
