@@ -184,10 +184,13 @@ void CollisionWorld::setPose(std::size_t body, const Eigen::Vector3d& p_WB, cons
 
 namespace {
 
-// The points of a convex shape (at pose X_WS) that can touch the half-space n·x ≤ offset first: a box's
-// corners, a hull's vertices, a sphere's lowest point, a capsule's two lowest points, a cylinder's lowest rim
-// point of each end and eight points around each rim (a cylinder standing on its end rests on its rim).
-// Half-space contact is exact this way and gives a face its whole manifold in one pass.
+// The points of a convex shape (at pose X_WS) that can touch the half-space n·x ≤ offset first, each with a
+// feature number that stays the same from step to step: a box's corners, a hull's vertices, a sphere's lowest
+// point, a capsule's two lowest points, a cylinder's lowest rim point of each end and eight points around each
+// rim (a cylinder standing on its end rests on its rim). A rim point within 45° of its end's lowest point is
+// left out where the cylinder is tilted: the lowest point is the contact there, and a material point of the
+// rim beside it would brake a rolling cylinder with friction of its own. Half-space contact is exact this way
+// and gives a face its whole manifold in one pass.
 template <typename Visit>
 void planeFeatures(const CollisionShape& shape, const Eigen::Isometry3d& X_WS, const Eigen::Vector3d& n, Visit visit) {
   const Eigen::Vector3d& s = shape.size;
@@ -196,32 +199,35 @@ void planeFeatures(const CollisionShape& shape, const Eigen::Isometry3d& X_WS, c
   switch (shape.type) {
     case ShapeType::kBox:
       for (int i = 0; i < 8; ++i) {
-        visit(X_WS * Eigen::Vector3d((i & 1 ? 0.5 : -0.5) * s.x(), (i & 2 ? 0.5 : -0.5) * s.y(),
-                                     (i & 4 ? 0.5 : -0.5) * s.z()));
+        visit(i, X_WS * Eigen::Vector3d((i & 1 ? 0.5 : -0.5) * s.x(), (i & 2 ? 0.5 : -0.5) * s.y(),
+                                        (i & 4 ? 0.5 : -0.5) * s.z()));
       }
       return;
     case ShapeType::kSphere:
-      return visit(c - s.x() * n);
+      return visit(0, c - s.x() * n);
     case ShapeType::kCapsule:
-      visit(c + 0.5 * s.y() * axis - s.x() * n);
-      return visit(c - 0.5 * s.y() * axis - s.x() * n);
+      visit(0, c + 0.5 * s.y() * axis - s.x() * n);
+      return visit(1, c - 0.5 * s.y() * axis - s.x() * n);
     case ShapeType::kCylinder: {
       const Eigen::Vector3d u = X_WS.linear().col(0), v = X_WS.linear().col(1);
       Eigen::Vector3d down = -(n - n.dot(axis) * axis);
       const bool tilted = down.norm() > 1e-9;
       if (tilted) down.normalize();
-      for (double end : {-0.5, 0.5}) {
-        const Eigen::Vector3d centre = c + end * s.y() * axis;
-        if (tilted) visit(centre + s.x() * down);
+      constexpr double kCos45 = 0.70710678118654752440;
+      for (int end = 0; end < 2; ++end) {
+        const Eigen::Vector3d centre = c + (end == 0 ? -0.5 : 0.5) * s.y() * axis;
+        if (tilted) visit(9 * end, centre + s.x() * down);
         for (int k = 0; k < 8; ++k) {
           const double phi = k * 0.78539816339744830962;
-          visit(centre + s.x() * (std::cos(phi) * u + std::sin(phi) * v));
+          const Eigen::Vector3d radial = std::cos(phi) * u + std::sin(phi) * v;
+          if (tilted && radial.dot(down) > kCos45) continue;
+          visit(9 * end + 1 + k, centre + s.x() * radial);
         }
       }
       return;
     }
     case ShapeType::kMesh:
-      for (const auto& vertex : shape.mesh.vertices) visit(X_WS * vertex);
+      for (std::size_t i = 0; i < shape.mesh.vertices.size(); ++i) visit(static_cast<int>(i), X_WS * shape.mesh.vertices[i]);
       return;
     case ShapeType::kPlane:
       return;
@@ -257,9 +263,7 @@ double CollisionWorld::planeContacts(std::size_t body, std::size_t plane_object,
   }
   double smallest = max_distance;
   const Eigen::Vector3d& n = plane->normal;
-  int feature = -1;
-  planeFeatures(impl_->body_shapes[body], impl_->shape_poses[body], n, [&](const Eigen::Vector3d& x) {
-    ++feature;
+  planeFeatures(impl_->body_shapes[body], impl_->shape_poses[body], n, [&](int feature, const Eigen::Vector3d& x) {
     const double distance = n.dot(x) - plane->offset;
     smallest = std::min(smallest, distance);
     if (distance > max_distance) return;

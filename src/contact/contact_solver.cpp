@@ -245,7 +245,8 @@ void projectPositions(std::vector<SolverContact>& contacts, std::vector<SolverBo
       const double separation = c.separation + c.n.dot(a.dx - b.dx) + c.cross_a.col(0).dot(a.dtheta) -
                                 c.cross_b.col(0).dot(b.dtheta);
       const double error = separation + slop;
-      if (error < 0.0) {
+      const bool bouncing = !c.sustained && c.target_speed > 0.0;
+      if (error < 0.0 && !bouncing) {
         deepest = std::min(deepest, error);
         const double push = -correction * error * c.normal_mass;
         a.dx += a.inverse_mass * push * c.n, a.dtheta += push * c.response_a.col(0);

@@ -43,6 +43,9 @@ struct SolverContact {
   double friction = 0.0;       ///< μ
   double restitution = 0.0;    ///< e
   double target_speed = 0.0;   ///< the normal relative speed the solve aims at (≥ it)
+  /// The pair touched at the start of the step: its impulse stands for a force over the whole step (and
+  /// moves the bodies as that force would have). A new contact's impulse is an impact at the step's end.
+  bool sustained = false;
   /// A sticking contact's anchors: the two points where it began to stick, one on each body, apart by
   /// anchor_gap in the tangent plane (t1, t2) when detected; the position projection closes that gap.
   bool anchored = false;
@@ -93,7 +96,8 @@ void solveImpact(std::vector<SolverContact>& contacts, std::vector<SolverBody>& 
 /// Position projection: moves bodies apart along the normals until no penetration beyond `slop` remains
 /// (a fraction `correction` of it per sweep), and brings an anchored contact's anchors together in the
 /// tangent plane by the same fraction (the slip that unconverged friction impulses leave would otherwise
-/// add up over the steps). The separations count the bodies' dx and dtheta as they stand (what the step
+/// add up over the steps). A new contact that bounces is left as it is (lifting it out would add the
+/// potential energy of its depth to a rebound that already has its kinetic energy). The separations count the bodies' dx and dtheta as they stand (what the step
 /// has already moved them since detection) to first order.
 void projectPositions(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, int iterations,
                       double slop, double correction);

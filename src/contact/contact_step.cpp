@@ -415,7 +415,8 @@ void ContactStep::addContact(const ContactPoint& point, const SceneBodies& bodie
   const ContactMaterial material = combined(point.a, point.b);
   c.friction = material.friction;
   // A pair that was already touching rests or slides: it does not bounce again.
-  c.restitution = resting && wasTouching(pairKey(point.a, point.b)) ? 0.0 : material.restitution;
+  c.sustained = resting && wasTouching(pairKey(point.a, point.b));
+  c.restitution = c.sustained ? 0.0 : material.restitution;
   const WarmPoint* last = resting && wasTouching(pairKey(point.a, point.b)) ? warmStart(c, point, bodies) : nullptr;
   // A point that stuck last step keeps the anchors where it began to stick, unless one of them has left the
   // point by more than the warm-start match.
@@ -481,6 +482,34 @@ const ContactStep::WarmPoint* ContactStep::warmStart(SolverContact& c, const Con
   return best;
 }
 
+void ContactStep::limitLiftOfNewContacts() {
+  // A contact made within the step (after a located impact, or a landing found at the step's end) has not
+  // pushed for the whole step: its body's fall was partly free flight, and undoing all of it by c h Δv would
+  // lift the contact off the surface (at h = 10 ms a ball hopped for ever: each landing lifted it by c h of
+  // its arrival speed). So a body moves by c h Δv only as far as brings such a contact to the surface, to
+  // first order in the move (as the projection measures it); a new contact that bounces is not lifted at all
+  // (its rebound already has the kinetic energy of its arrival, and the lift would add potential energy).
+  lift_share_.assign(solver_bodies_.size(), 1.0);
+  bool limited = false;
+  for (const SolverContact& c : solver_contacts_) {
+    if (c.sustained) continue;
+    const SolverBody& a = solver_bodies_[c.a];
+    const SolverBody& b = solver_bodies_[c.b];
+    const double lift = c.n.dot(a.dx - b.dx) + c.cross_a.col(0).dot(a.dtheta) - c.cross_b.col(0).dot(b.dtheta);
+    const bool bouncing = c.target_speed > 0.0;
+    if (!(lift > 0.0) || (c.separation + lift <= 0.0 && !bouncing)) continue;
+    const double share = bouncing ? 0.0 : std::max(0.0, -c.separation) / lift;
+    lift_share_[c.a] = std::min(lift_share_[c.a], share);
+    lift_share_[c.b] = std::min(lift_share_[c.b], share);
+    limited = true;
+  }
+  if (!limited) return;
+  for (std::size_t s = 1; s < solver_bodies_.size(); ++s) {  // 0 is the environment
+    solver_bodies_[s].dx *= lift_share_[s];
+    solver_bodies_[s].dtheta *= lift_share_[s];
+  }
+}
+
 void ContactStep::solveResting(SceneBodies& bodies, double h) {
   solver_contacts_.clear();
   solver_points_.clear();
@@ -519,6 +548,7 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
     s.dx = weight * s.inverse_mass * s.dP;
     s.dtheta = weight * (s.inverse_inertia_W * s.dL);
   }
+  limitLiftOfNewContacts();
   projectPositions(solver_contacts_, solver_bodies_, settings_.position_iterations, settings_.penetration_slop,
                    settings_.position_correction);
   for (std::size_t s = 1; s < solver_bodies_.size(); ++s) {  // 0 is the environment

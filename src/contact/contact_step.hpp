@@ -94,6 +94,7 @@ class ContactStep {
   std::size_t solverIndex(const SceneBodies& bodies, std::size_t object);
   void addContact(const ContactPoint& point, const SceneBodies& bodies, bool resting);
   void solveResting(SceneBodies& bodies, double h);
+  void limitLiftOfNewContacts();
 
   std::unique_ptr<CollisionWorld> world_;
   std::vector<std::size_t> colliders_;
@@ -105,6 +106,7 @@ class ContactStep {
   std::vector<char> fast_;                  // per colliding body: moved far enough in the step to sweep
   std::vector<Eigen::Vector3d> swept_low_, swept_high_;  // per colliding body: the box its step sweeps
   std::vector<std::size_t> near_;           // scratch: objects near a swept box
+  std::vector<double> lift_share_;          // scratch: per solver body, the share of c h Δv it moves by
   std::vector<char> outside_;               // per colliding body: beyond the contact range
   ContactSettings settings_;
   IntegratorType integrator_type_;

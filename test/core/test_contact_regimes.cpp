@@ -214,3 +214,99 @@ TEST(ContactRegimes, StaticFrictionHoldsUpToTheFrictionAngleAndGivesWayAboveIt) 
     }
   }
 }
+
+// At a coarse step a ball with e < 1 bounces while its approach beats the restitution threshold and then
+// rests: no limit cycle of small hops (each landing found within a step used to be lifted off again by the
+// position update meant for a contact that held over the whole step).
+TEST(ContactRegimes, ABouncingBallComesToRestAtCoarseSteps) {
+  const double radius = 0.1, slop = ContactSettings().penetration_slop;
+  for (IntegratorType type : {IntegratorType::kRk4, IntegratorType::kSemiImplicitEuler}) {
+    for (double h : {1e-3, 5e-3, 1e-2}) {
+      for (double e : {0.5, 0.8}) {
+        for (bool located : {true, false}) {
+          ContactSetup setup;
+          setup.environment = {groundPlane(Eigen::Vector3d::UnitZ(), 0.5, e)};
+          setup.bodies = {collisionShape(ShapeType::kSphere, Eigen::Vector3d(radius, 0, 0), 0.5, e)};
+          setup.settings.event_location = located;
+          Scene scene({body(MassProperties::sphere(1.0, radius), Eigen::Vector3d(0, 0, radius + 1.0),
+                            Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero())},
+                      type, h, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+          // The bounces end (the series of flights 2 eⁿ v₁/g) within t₁ (1 + 2e/(1 − e)) ≤ 4.1 s for e = 0.8.
+          scene.step(static_cast<std::int64_t>(std::llround(8.0 / h)));
+          double fastest = 0.0, highest = -1.0, lowest = 1.0;
+          for (int i = 0; i < static_cast<int>(std::llround(2.0 / h)); ++i) {
+            scene.step(1);
+            fastest = std::max(fastest, scene.state().P_W.norm());
+            highest = std::max(highest, scene.state().p_WB.z() - radius);
+            lowest = std::min(lowest, scene.state().p_WB.z() - radius);
+          }
+          const std::string what = std::string(integratorName(type)) + " h " + std::to_string(h) + " e " +
+                                   std::to_string(e) + (located ? " located" : " at the step's end");
+          EXPECT_LT(fastest, 1e-9) << what;
+          // Resting: neither above the ground by more than one step's free fall (c g h², c = ½ for rk4, 1 for
+          // semi-implicit Euler, which moves x with the new velocity) nor in it beyond the slop and that fall.
+          const double fall = (type == IntegratorType::kRk4 ? 0.5 : 1.0) * kG * h * h;
+          EXPECT_LE(highest, fall * (1.0 + 1e-9)) << what;
+          EXPECT_GE(lowest, -slop - fall) << what;
+        }
+      }
+    }
+  }
+}
+
+// Rolling without slipping at a coarse step: a sphere at (5/7) g sin θ and a cylinder lying across the slope
+// at (2/3) g sin θ, within 1 % over 1 s at h = 10 ms, and neither lifts off the incline by more than the slop.
+TEST(ContactRegimes, RollingAtCoarseStepsFollowsTheClosedForm) {
+  const double theta = 25.0 * 3.14159265358979323846 / 180.0, radius = 0.1, length = 0.3, mu = 0.6;
+  const double slop = ContactSettings().penetration_slop;
+  const Eigen::Quaterniond incline(Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitY()));
+  const Eigen::Vector3d normal = incline * Eigen::Vector3d::UnitZ(), down_slope = incline * Eigen::Vector3d::UnitX();
+  for (ShapeType type : {ShapeType::kSphere, ShapeType::kCylinder}) {
+    for (double h : {1e-3, 1e-2}) {
+      ContactSetup setup;
+      setup.environment = {groundPlane(normal, mu)};
+      setup.bodies = {collisionShape(type, Eigen::Vector3d(radius, length, 0), mu, 0.0)};
+      // The cylinder's axis (its z) across the slope.
+      const Eigen::Quaterniond q = incline * Eigen::Quaterniond(Eigen::AngleAxisd(0.5 * 3.14159265358979323846, Eigen::Vector3d::UnitX()));
+      const MassProperties mass = massOf(type, Eigen::Vector3d(radius, length, 0), 1.0);
+      const Eigen::Vector3d start = radius * normal;
+      Scene scene({body(mass, start, q, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero())}, IntegratorType::kRk4, h,
+                  IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+      double lift = 0.0;
+      for (int i = 0; i < static_cast<int>(std::llround(1.0 / h)); ++i) {
+        scene.step(1);
+        lift = std::max(lift, (scene.state().p_WB - start).dot(normal));
+      }
+      const double k = type == ShapeType::kSphere ? 5.0 / 7.0 : 2.0 / 3.0;
+      const double expected = 0.5 * k * kG * std::sin(theta);
+      const std::string what = std::string(shapeTypeName(type)) + " h " + std::to_string(h);
+      EXPECT_NEAR((scene.state().p_WB - start).dot(down_slope), expected, 0.01 * expected) << what;
+      EXPECT_LE(lift, slop) << what;
+    }
+  }
+}
+
+// Impacts resolved at the step's end (no event location) never gain energy: a ball with e = 1 keeps its drop
+// height over a hundred bounces (it used to climb by the depth the projection lifted it out of at each one),
+// and one with e = 0.8 only loses. The energy is read as the height z + v²/(2g) the ball's motion reaches.
+TEST(ContactRegimes, ImpactsResolvedAtTheStepsEndNeverGainEnergy) {
+  const double radius = 0.1, drop = 1.0;
+  for (double h : {1e-3, 1e-2}) {
+    for (double e : {1.0, 0.8}) {
+      ContactSetup setup;
+      setup.environment = {groundPlane(Eigen::Vector3d::UnitZ(), 0.5, e)};
+      setup.bodies = {collisionShape(ShapeType::kSphere, Eigen::Vector3d(radius, 0, 0), 0.5, e)};
+      setup.settings.event_location = false;
+      Scene scene({body(MassProperties::sphere(1.0, radius), Eigen::Vector3d(0, 0, radius + drop),
+                        Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero())},
+                  IntegratorType::kRk4, h, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+      double highest = 0.0;
+      for (int i = 0; i < static_cast<int>(std::llround(45.0 / h)); ++i) {  // ~100 bounces of 0.9 s for e = 1
+        scene.step(1);
+        const double vz = scene.state().P_W.z();
+        highest = std::max(highest, scene.state().p_WB.z() - radius + vz * vz / (2.0 * kG));
+      }
+      EXPECT_LE(highest, drop * (1.0 + 1e-9)) << "h " << h << " e " << e;
+    }
+  }
+}
