@@ -35,11 +35,35 @@ ContactPoint pointFrom(const btManifoldPoint& p, const btCollisionObject* a, con
   return point;
 }
 
+// Bullet's dispatcher, which reports the points of a pair up to `near_distance` apart (its own near callback
+// asks for touching points only: two spheres 1e-17 m apart had no contact, so a ball resting against
+// another did not count as touching, and an impact could not travel through the pair).
+struct NearDispatcher : btCollisionDispatcher {
+  explicit NearDispatcher(btCollisionConfiguration* configuration) : btCollisionDispatcher(configuration) {
+    setNearCallback(&NearDispatcher::nearCallback);
+  }
+  double near_distance = 0.0;
+
+  // btCollisionDispatcher::defaultNearCallback, with the result's distance threshold set.
+  static void nearCallback(btBroadphasePair& pair, btCollisionDispatcher& dispatcher, const btDispatcherInfo& info) {
+    auto* a = static_cast<btCollisionObject*>(pair.m_pProxy0->m_clientObject);
+    auto* b = static_cast<btCollisionObject*>(pair.m_pProxy1->m_clientObject);
+    if (!dispatcher.needsCollision(a, b)) return;
+    btCollisionObjectWrapper a_wrap(nullptr, a->getCollisionShape(), a, a->getWorldTransform(), -1, -1);
+    btCollisionObjectWrapper b_wrap(nullptr, b->getCollisionShape(), b, b->getWorldTransform(), -1, -1);
+    if (!pair.m_algorithm) pair.m_algorithm = dispatcher.findAlgorithm(&a_wrap, &b_wrap, nullptr, BT_CONTACT_POINT_ALGORITHMS);
+    if (!pair.m_algorithm) return;
+    btManifoldResult result(&a_wrap, &b_wrap);
+    result.m_closestPointDistanceThreshold = static_cast<NearDispatcher&>(dispatcher).near_distance;
+    pair.m_algorithm->processCollision(&a_wrap, &b_wrap, info, &result);
+  }
+};
+
 }  // namespace
 
 struct CollisionWorld::Impl {
   btDefaultCollisionConfiguration configuration;
-  btCollisionDispatcher dispatcher{&configuration};
+  NearDispatcher dispatcher{&configuration};
   btDbvtBroadphase broadphase;
   btCollisionWorld world{&dispatcher, &broadphase, &configuration};
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
@@ -238,10 +262,11 @@ void planeFeatures(const CollisionShape& shape, const Eigen::Isometry3d& X_WS, c
 
 void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distance) {
   points.clear();
-  btDispatcher& dispatcher = impl_->dispatcher;
+  btCollisionDispatcher& dispatcher = impl_->dispatcher;
   // Each step's manifold is made afresh: Bullet's persistence drops the points of a sliding face when they
   // drift from where they were found; warm starting is the contact step's own (by matching points).
   for (int m = 0; m < dispatcher.getNumManifolds(); ++m) dispatcher.getManifoldByIndexInternal(m)->clearManifold();
+  impl_->dispatcher.near_distance = std::max(0.0, max_distance);
   impl_->world.performDiscreteCollisionDetection();
   for (int m = 0; m < dispatcher.getNumManifolds(); ++m) {
     btPersistentManifold* manifold = dispatcher.getManifoldByIndexInternal(m);

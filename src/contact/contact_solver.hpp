@@ -64,6 +64,11 @@ struct SolverContact {
 /// How a solve treats the approach velocity.
 struct SolveOptions {
   int iterations = 20;
+  /// A solve not converged after `iterations` sweeps goes on (to a change of 1e-9 of the impulses) while its
+  /// sweeps have updated fewer contacts than `iterations` sweeps over this many would: a small scene
+  /// converges (a heavy box on a light one needs hundreds of sweeps, the impulse crossing a mass ratio of
+  /// 1 000 a little at each), a large one costs what `iterations` sweeps cost.
+  std::size_t sweep_budget_contacts = 100;
   double restitution_threshold = 0.05;  ///< [m/s]
   bool bounce = true;                   ///< apply restitution to approaches faster than the threshold
   double dt = 0.0;                      ///< > 0: a separated contact (separation > 0) may close at separation/dt

@@ -13,17 +13,6 @@ namespace contact {
 
 namespace {
 
-// The least reach of a located impact's patch beyond its deepest point [m] (the slop, where it is larger).
-constexpr double kImpactPointTolerance = 1e-6;
-// The farthest apart a pair's distance is evaluated while an impact is located [m].
-constexpr double kDistanceRange = 1e3;
-// The root finder's most evaluations (regula falsi, Illinois variant: superlinear, bracketed).
-constexpr int kMaxRootIterations = 80;
-// What distanceAfter answers when the partial step fails.
-constexpr double kNoDistance = std::numeric_limits<double>::quiet_NaN();
-// Bodies farther than this from the origin leave the contact world until they come back [m]: double
-// precision still resolves 1e-10 m there, and nothing past it can overflow Bullet's bounding boxes.
-constexpr double kContactRange = 1e6;
 // A point found this close to where a point of the same pair was last step (on the body) inherits its
 // impulses as the solver's first guess [m].
 constexpr double kWarmStartMatch = 2e-3;
@@ -36,8 +25,6 @@ constexpr double kStickingSlip = 0.1;
 // leaves just inside the disc were anchored (its travel down an incline 4.7e-4 short at h = 0.25 ms with 5
 // sweeps, against 1.4e-5).
 constexpr double kStartingFriction = 0.5;
-// A colliding body not yet in the solver's list.
-constexpr std::size_t kUnassigned = std::numeric_limits<std::size_t>::max();
 
 // Whether a shape can roll: its contact point then moves over its surface (sphere, cylinder, capsule).
 bool isCurved(ShapeType type) {
@@ -100,6 +87,7 @@ ContactStep::ContactStep(const ContactSetup& setup, const std::vector<std::size_
   contacts_.resize(n);
   outside_.assign(n, 0);
   fast_.assign(n, 0);
+  reserved_.assign(n, 0);
   swept_low_.resize(n);
   swept_high_.resize(n);
 }
@@ -239,145 +227,6 @@ void ContactStep::stepWhole(SceneBodies& bodies, const std::vector<char>& runnin
     touching_.clear();
     warm_.clear();
   }
-}
-
-void ContactStep::findCandidates(SceneBodies& bodies, const std::vector<char>& running, double h) {
-  candidates_.clear();
-  engaged_.clear();
-  std::fill(engagement_.begin(), engagement_.end(), 0);
-  // A body that moves far in the step is tested along its whole path against everything near it (the
-  // continuous test); its impacts come first, and a body takes part in one located impact a step.
-  if (settings_.continuous) findFastImpacts(bodies, running, h);
-  for (const Candidate& c : candidates_) {
-    for (std::size_t object : {c.a, c.b}) {
-      if (world_->isBody(object)) engagement_[object] = 2;
-    }
-  }
-  const std::size_t fast_impacts = candidates_.size();
-  for (const ContactPoint& point : points_) {
-    const std::uint64_t key = pairKey(point.a, point.b);
-    const bool touching = wasTouching(key);
-    if (point.distance > (touching ? settings_.penetration_slop : 0.0)) continue;
-    // A pair's points come together (one manifold per pair, one pass per body and half-space).
-    if (!engaged_.empty() && engaged_.back() == key) continue;
-    engaged_.push_back(key);
-    if (world_->isBody(point.a)) ++engagement_[point.a];
-    if (world_->isBody(point.b)) ++engagement_[point.b];
-    if (!touching && settings_.event_location) candidates_.push_back({point.a, point.b, 0.0, h, 0.0, 0.0, false});
-  }
-  // Only an impact alone on its bodies is located: several at once are the solver's.
-  candidates_.erase(std::remove_if(candidates_.begin() + static_cast<std::ptrdiff_t>(fast_impacts), candidates_.end(),
-                                   [&](const Candidate& c) {
-                                     return (world_->isBody(c.a) && engagement_[c.a] != 1) ||
-                                            (world_->isBody(c.b) && engagement_[c.b] != 1);
-                                   }),
-                    candidates_.end());
-}
-
-double ContactStep::distanceAfter(SceneBodies& bodies, std::size_t a, std::size_t b, double tau, bool keep_states,
-                                  State* at) {
-  for (std::size_t side = 0; side < 2; ++side) {
-    const std::size_t object = side == 0 ? a : b;
-    if (!world_->isBody(object)) continue;
-    const std::size_t body = colliders_[object];
-    State state = start_[object];
-    if (tau > 0.0) {
-      Integrator integrator = bodies.integrators[body];
-      const StepStatus status = integrator.step(bodies.models[body], bodies.terms[body], bodies.inputs[body], tau, state);
-      // A partial step the integrator cannot take leaves the impact to the solver at the step's end.
-      if (status != StepStatus::kOk || !(state.p_WB.norm() <= kContactRange)) return kNoDistance;
-    }
-    world_->setPose(object, state.p_WB, state.q_WB);
-    if (keep_states) bodies.states[body] = state;
-    if (at != nullptr) at[side] = state;
-  }
-  return world_->pairDistance(a, b, kDistanceRange, nullptr);
-}
-
-bool ContactStep::resolveImpact(SceneBodies& bodies, Candidate c, double h) {
-  if (!c.swept) {
-    // Bracket the first touch: apart at the start, touching at the end.
-    c.f_lo = distanceAfter(bodies, c.a, c.b, c.lo, false);
-    if (!(c.f_lo > 0.0) || std::isnan(c.f_lo)) return false;  // already touching at the start: the solver's
-    c.f_hi = distanceAfter(bodies, c.a, c.b, c.hi, false);
-    if (!(c.f_hi <= 0.0)) return restoreAfterFailedLocation(bodies, c);
-  }
-  double lo = c.lo, hi = c.hi, f_lo = c.f_lo, f_hi = c.f_hi;
-  // Regula falsi, Illinois variant: keeps the bracket, converges superlinearly on a smooth distance. A swept
-  // impact's bracket may already end within reach (conservative advancement stops short of the touch).
-  int side = 0;
-  for (int i = 0; i < kMaxRootIterations && f_hi < 0.0 && hi - lo > settings_.event_tolerance; ++i) {
-    double tau = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
-    if (!(tau > lo && tau < hi)) tau = 0.5 * (lo + hi);
-    const double f = distanceAfter(bodies, c.a, c.b, tau, false);
-    if (std::isnan(f)) return restoreAfterFailedLocation(bodies, c);
-    if (f > 0.0) {
-      lo = tau, f_lo = f;
-      if (side == -1) f_hi *= 0.5;
-      side = -1;
-    } else {
-      hi = tau, f_hi = f;
-      if (side == 1) f_lo *= 0.5;
-      side = 1;
-    }
-  }
-  // At the touch (the bracket's touching end): the points of first contact and the impact.
-  distanceAfter(bodies, c.a, c.b, hi, true);
-  // The patch that meets: every point within the slop of the deepest (a face landing on a face meets at all
-  // its corners at once; the narrow phase's perturbed points of a face lie up to ~1e-5 m apart in distance).
-  const double patch = std::max(kImpactPointTolerance, settings_.penetration_slop);
-  const double deepest = world_->pairDistance(c.a, c.b, std::max(0.0, f_hi) + patch, &pair_points_);
-  solver_contacts_.clear();
-  solver_points_.clear();
-  solver_anchors_.clear();
-  startSolverLists();
-  for (const ContactPoint& point : pair_points_) {
-    if (point.distance <= deepest + patch) addContact(point, bodies, false);
-  }
-  if (solver_contacts_.empty()) {  // nothing within reach after all: the rest of the step is free motion
-    for (std::size_t object : {c.a, c.b}) {
-      if (!world_->isBody(object)) continue;
-      const std::size_t body = colliders_[object];
-      bodies.integrators[body].step(bodies.models[body], bodies.terms[body], bodies.inputs[body], h - hi,
-                                    bodies.states[body]);
-    }
-    return true;
-  }
-  applyImpact(bodies, c, hi, h);
-  return true;
-}
-
-void ContactStep::applyImpact(SceneBodies& bodies, const Candidate& c, double tau, double h) {
-  SolveOptions options;
-  options.iterations = settings_.iterations;
-  options.restitution_threshold = settings_.restitution_threshold;
-  prepareContacts(solver_contacts_, solver_bodies_, options);
-  const double approach = -solver_contacts_.front().n.dot(relativeVelocity(solver_contacts_.front(), solver_bodies_));
-  solveImpact(solver_contacts_, solver_bodies_, options);
-  // Momenta change by the impulses; the rest of the step is free motion again.
-  for (std::size_t s = 1; s < solver_bodies_.size(); ++s) {  // 0 is the environment
-    const std::size_t k = solver_body_of_[s], body = colliders_[k];
-    State& state = bodies.states[body];
-    state.P_W += solver_bodies_[s].dP;
-    state.L_W += solver_bodies_[s].dL;
-    bodies.integrators[body].step(bodies.models[body], bodies.terms[body], bodies.inputs[body], h - tau, state);
-    solver_of_[k] = kUnassigned;
-  }
-  ++(c.swept ? statistics_.swept_impacts : statistics_.located_impacts);
-  if (impacts_.size() == kImpactLog) impacts_.erase(impacts_.begin());
-  const std::size_t body_object = world_->isBody(c.a) ? c.a : c.b;
-  impacts_.push_back({start_[body_object].t + tau, colliders_[body_object], partner(body_object == c.a ? c.b : c.a),
-                      approach});
-}
-
-bool ContactStep::restoreAfterFailedLocation(SceneBodies& bodies, const Candidate& c) {
-  // The pair's objects go back to the end-of-step poses the detection saw.
-  for (std::size_t object : {c.a, c.b}) {
-    if (!world_->isBody(object)) continue;
-    const State& state = bodies.states[colliders_[object]];
-    world_->setPose(object, state.p_WB, state.q_WB);
-  }
-  return false;
 }
 
 void ContactStep::startSolverLists() {

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -29,6 +30,12 @@ struct SceneBodies {
 
 class ContactStep {
  public:
+  /// Bodies farther than this from the origin leave the contact world until they come back [m]: double
+  /// precision still resolves 1e-10 m there, and nothing past it can overflow Bullet's bounding boxes.
+  static constexpr double kContactRange = 1e6;
+  /// A colliding body not yet in the solver's list.
+  static constexpr std::size_t kUnassigned = std::numeric_limits<std::size_t>::max();
+
   /// `colliders[k]` is the scene index of the k-th colliding body; setup.bodies[that index] its shape;
   /// `states` the scene's states (the bodies enter the broad phase where they are).
   ContactStep(const ContactSetup& setup, const std::vector<std::size_t>& colliders, IntegratorType integrator,
@@ -74,6 +81,10 @@ class ContactStep {
   void findCandidates(SceneBodies& bodies, const std::vector<char>& running, double h);
   bool resolveImpact(SceneBodies& bodies, Candidate candidate, double h);
   void applyImpact(SceneBodies& bodies, const Candidate& candidate, double tau, double h);
+  void gatherChain(SceneBodies& bodies, const Candidate& candidate, double tau);
+  void solveChain(const SolveOptions& options);
+  static constexpr std::size_t kMaxChainBodies = 64;  // bodies an impact's chain reaches at most
+  static constexpr std::size_t kMaxChainImpacts = 16; // pairwise impacts per pair of a chain at most
   // The pair's signed distance after a partial step tau of both from the step's start (NaN if the partial
   // step fails); `keep_states` leaves the bodies there, `at` (two entries) receives the states.
   double distanceAfter(SceneBodies& bodies, std::size_t a, std::size_t b, double tau, bool keep_states,
@@ -107,6 +118,14 @@ class ContactStep {
   std::vector<Eigen::Vector3d> swept_low_, swept_high_;  // per colliding body: the box its step sweeps
   std::vector<std::size_t> near_;           // scratch: objects near a swept box
   std::vector<double> lift_share_;          // scratch: per solver body, the share of c h Δv it moves by
+  std::vector<char> reserved_;              // per colliding body: in a located impact of this step already
+  // An impact's chain: its bodies (collision objects), each pair's range in solver_contacts_, scratch.
+  std::vector<std::size_t> chain_;
+  std::vector<std::uint64_t> chain_pairs_;
+  std::vector<std::pair<std::size_t, std::size_t>> chain_groups_;
+  std::vector<ContactPoint> chain_points_;
+  std::vector<SolverContact> chain_contacts_;
+  std::vector<Eigen::Vector3d> chain_dP_, chain_dL_;
   std::vector<char> outside_;               // per colliding body: beyond the contact range
   ContactSettings settings_;
   IntegratorType integrator_type_;

@@ -310,3 +310,72 @@ TEST(ContactRegimes, ImpactsResolvedAtTheStepsEndNeverGainEnergy) {
     }
   }
 }
+
+// Newton's cradle and its relatives: a row of touching equal balls (e = 1, no friction) struck by one or two
+// moving ones. The impulse travels through the row pair by pair, so the textbook result holds: as many balls
+// leave the far end, at the speed that came in, as struck; the rest stand still; momentum and energy to 1e-9.
+// (Solved at once, the touching contacts share the impact and the three-ball cradle ends at (−1/3, 2/3, 2/3) v.)
+TEST(ContactRegimes, NewtonsCradleSendsTheImpactThroughTheRow) {
+  const double radius = 0.05, speed = 1.5;
+  const MassProperties ball = MassProperties::sphere(1.0, radius);
+  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+  for (int resting : {2, 4}) {
+    for (int striking : {1, 2}) {
+      for (double h : {1e-3, 1e-2}) {
+        ContactSetup setup;
+        std::vector<BodyDefinition> balls;
+        for (int i = 0; i < striking + resting; ++i) {
+          setup.bodies.push_back(collisionShape(ShapeType::kSphere, Eigen::Vector3d(radius, 0, 0), 0.0, 1.0));
+          const bool moving = i < striking;
+          // The striking balls touch each other, 0.37 of a step's travel off the step grid from the row.
+          const double x = moving ? -(0.2 + 0.37 * speed * h) - 2.0 * radius * (striking - i) : 2.0 * radius * (i - striking);
+          balls.push_back(body(ball, Eigen::Vector3d(x, 0, 0), Eigen::Quaterniond::Identity(),
+                               moving ? Eigen::Vector3d(speed, 0, 0) : zero, zero, zero));
+        }
+        Scene scene(balls, IntegratorType::kRk4, h, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+        scene.step(static_cast<std::int64_t>(std::llround(0.5 / h)));
+        const std::size_t n = balls.size();
+        double momentum = 0.0, energy = 0.0;
+        const std::string what = std::to_string(striking) + " on " + std::to_string(resting) + ", h " + std::to_string(h);
+        for (std::size_t i = 0; i < n; ++i) {
+          const double expected = i + striking >= n ? speed : 0.0;
+          EXPECT_NEAR(scene.state(i).P_W.x(), expected, 1e-9) << what << ", ball " << i;
+          momentum += scene.state(i).P_W.x();
+          energy += kineticEnergy(ball, scene.state(i));
+        }
+        EXPECT_NEAR(momentum, striking * speed, 1e-9) << what;
+        EXPECT_NEAR(energy, 0.5 * striking * speed * speed, 1e-9) << what;
+      }
+    }
+  }
+}
+
+// A 1 000 : 1 pair of boxes stacked on the ground, the upper one set off the lower one's centre, in both
+// orders: it stands for 5 s, the upper box sinking less than the penetration slop, sliding less than it and
+// turning less than the slop across the box's width. (The heavy box's weight reaches the ground through the
+// light one only as fast as the sweeps carry it across the mass ratio: a small scene's solve runs until it
+// converges, within its budget.)
+TEST(ContactRegimes, AThousandToOneMassRatioStandsInEitherOrder) {
+  const Eigen::Vector3d size(0.2, 0.2, 0.2);
+  const double slop = ContactSettings().penetration_slop;
+  for (double ratio : {1000.0, 1e-3}) {
+    for (IntegratorType type : {IntegratorType::kRk4, IntegratorType::kSemiImplicitEuler}) {
+      ContactSetup setup;
+      setup.environment = {groundPlane(Eigen::Vector3d::UnitZ(), 0.5)};
+      setup.bodies = {collisionShape(ShapeType::kBox, size, 0.5, 0.0), collisionShape(ShapeType::kBox, size, 0.5, 0.0)};
+      const Eigen::Vector3d upper(0.03, 0.02, 0.3);
+      Scene scene({body(MassProperties::box(1.0, size), Eigen::Vector3d(0, 0, 0.1), Eigen::Quaterniond::Identity(),
+                        Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()),
+                   body(MassProperties::box(ratio, size), upper, Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero(),
+                        Eigen::Vector3d::Zero())},
+                  type, 1e-3, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+      scene.step(5000);
+      const State& top = scene.state(1);
+      const std::string what = "ratio " + std::to_string(ratio) + " " + integratorName(type);
+      EXPECT_GT(top.p_WB.z() - upper.z(), -slop) << what;
+      EXPECT_LT((top.p_WB - upper).head<2>().norm(), slop) << what;
+      EXPECT_LT(Eigen::AngleAxisd(top.q_WB).angle(), slop / size.x()) << what;
+      EXPECT_LE(scene.contactStatistics().max_penetration, slop) << what;
+    }
+  }
+}
