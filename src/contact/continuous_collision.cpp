@@ -2,7 +2,7 @@
 // is advanced conservatively along the path its integrator takes, against every object whose bounding box
 // meets the box its step sweeps, so that it cannot pass through anything, however thin.
 //
-// Conservative advancement (Mirtich, "Impulse-based Dynamic Simulation of Rigid Body Systems", 1996, §2.4):
+// Conservative advancement (Mirtich, "Impulse-based Dynamic Simulation of Rigid Body Systems", 1996):
 // if no two points of a pair close faster than u over [τ, h], a pair apart by d at τ cannot touch before
 // τ + d/u. Each advance is taken along the integrated path itself (the integrator's step of τ from the step's
 // start, as the located impacts use), not along a straight chord of it, so a curved path under gravity or a
