@@ -96,6 +96,7 @@ class ContactStep {
   // thick near something, and conservative advancement along the integrated path.
   static constexpr int kMaxStepSplits = 8;  // at most 2⁸ = 256 parts of a step
   bool needsShorterStep(const SceneBodies& bodies, const std::vector<char>& running, double h);
+  double reachBound(const SceneBodies& bodies, std::size_t k, double h) const;
   bool movesFast(std::size_t k, const State& after) const;
   void sweptBox(const SceneBodies& bodies, std::size_t k, double h, Eigen::Vector3d& low, Eigen::Vector3d& high) const;
   void findFastImpacts(SceneBodies& bodies, const std::vector<char>& running, double h);

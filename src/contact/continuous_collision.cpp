@@ -39,15 +39,30 @@ double angleBetween(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
 
 }  // namespace
 
+double ContactStep::reachBound(const SceneBodies& bodies, std::size_t k, double h) const {
+  // How far a point of the body can move over h from its present motion and the forces it is under: |v| grows
+  // by at most |F|/M + |g| per second, |L| by at most |τ| (the input's, about the centre of mass), and a point
+  // moves at |v| + |ω| R with |ω| ≤ |L| / I_min. Damping only slows the body.
+  const std::size_t body = colliders_[k];
+  const State& state = bodies.states[body];
+  const MassProperties& mass = bodies.models[body].mass;
+  const AppliedWrench& input = bodies.inputs[body];
+  const double acceleration = (input.world.force.norm() + input.body.force.norm()) * mass.inverseMass() +
+                              bodies.models[body].forces.gravity_W.norm();
+  const double torque = input.world.torque.norm() + input.body.torque.norm();
+  const double v = state.P_W.norm() * mass.inverseMass() + 0.5 * acceleration * h;
+  const double w = (state.L_W.norm() + 0.5 * torque * h) * mass.inversePrincipalMoments().maxCoeff();
+  return kSpeedMargin * (v + w * outer_radius_[k]) * h;
+}
+
 bool ContactStep::needsShorterStep(const SceneBodies& bodies, const std::vector<char>& running, double h) {
-  // The motion each body would have over h at its present speeds (a point of it moves at most |v| + |ω| R).
   double farthest = 0.0;
   const std::size_t n = colliders_.size();
   for (std::size_t k = 0; k < n; ++k) {
     fast_[k] = 0;
     const State& state = bodies.states[colliders_[k]];
     if (!running[k] || outside_[k] || !isFinite(state)) continue;
-    const double reach = closingSpeedBound(bodies, k, state) * h;
+    const double reach = reachBound(bodies, k, h);
     farthest = std::max(farthest, reach);
     fast_[k] = reach > kSweepFraction * inner_radius_[k];
   }
@@ -63,8 +78,13 @@ bool ContactStep::needsShorterStep(const SceneBodies& bodies, const std::vector<
 
 bool ContactStep::movesFast(std::size_t k, const State& after) const {
   const State& before = start_[k];
-  const double moved = (after.p_WB - before.p_WB).norm() + angleBetween(before.q_WB, after.q_WB) * outer_radius_[k];
-  return moved > kSweepFraction * inner_radius_[k];
+  const double limit = kSweepFraction * inner_radius_[k];
+  const double moved = (after.p_WB - before.p_WB).norm();
+  if (moved > limit) return true;
+  // The turn's reach from |q_v| alone first (2 asin x ≤ π x): the arcsine only where that bound is in doubt.
+  const double x = (before.q_WB.conjugate() * after.q_WB).vec().norm();
+  if (moved + 3.14159265358979323846 * x * outer_radius_[k] <= limit) return false;
+  return moved + angleBetween(before.q_WB, after.q_WB) * outer_radius_[k] > limit;
 }
 
 void ContactStep::sweptBox(const SceneBodies& bodies, std::size_t k, double h, Eigen::Vector3d& low,
@@ -91,9 +111,14 @@ double ContactStep::closingSpeedBound(const SceneBodies& bodies, std::size_t obj
 
 void ContactStep::findFastImpacts(SceneBodies& bodies, const std::vector<char>& running, double h) {
   const std::size_t n = colliders_.size();
-  double farthest = 0.0;  // the largest reach of any body's step beyond its end box
+  bool any = false;
   for (std::size_t k = 0; k < n; ++k) {
     fast_[k] = running[k] && !outside_[k] && movesFast(k, bodies.states[colliders_[k]]);
+    any = any || fast_[k];
+  }
+  if (!any) return;
+  double farthest = 0.0;  // the largest reach of any body's step beyond its end box
+  for (std::size_t k = 0; k < n; ++k) {
     sweptBox(bodies, k, h, swept_low_[k], swept_high_[k]);
     if (running[k] && !outside_[k]) farthest = std::max(farthest, (swept_high_[k] - swept_low_[k]).maxCoeff());
   }
