@@ -344,6 +344,11 @@ void Scene::setForceModel(std::size_t body, const ForceModel& forces) {
   assemble(body);
 }
 
+std::string Scene::placementConflict(std::size_t body, const State& state) {
+  if (!collides(body)) return "";
+  return contact_->placementConflict(collider_of_[body], state, states_, "would be inside");
+}
+
 bool Scene::setState(std::size_t body, const State& state) {
   if (!isFinite(state)) return false;
   states_[body] = state;

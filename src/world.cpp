@@ -412,6 +412,10 @@ CommandReply World::setState(std::size_t body, const State& state, Nanoseconds a
   if (!Integrator::acceptable(state)) {  // what a step may commit, a state from outside must be too
     return {false, "refused: the state is not finite or its orientation not a unit quaternion"};
   }
+  if (body < scene_.bodyCount()) {
+    const std::string conflict = scene_.placementConflict(body, state);
+    if (!conflict.empty()) return {false, "refused: " + conflict};
+  }
   Command replace = command(CommandKind::kSetState, body, arrival);
   replace.state = state;
   return submit(replace);

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "rigid_body_sim/contact.hpp"
@@ -106,6 +107,9 @@ class Scene {
   /// Replaces a body's state if it is finite (returns whether it was). Its terms are assembled again: a
   /// state with spin gives a body rotation it did not need before.
   bool setState(std::size_t body, const State& state);
+  /// Empty if a colliding body may be set to `state`: not inside another body or the environment (deeper
+  /// than the penetration slop, or inside a closed environment mesh); otherwise a message naming both.
+  std::string placementConflict(std::size_t body, const State& state);
 
   const State& state(std::size_t body = 0) const { return states_[body]; }
   const Model& model(std::size_t body = 0) const { return models_[body]; }

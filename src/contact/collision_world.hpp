@@ -58,6 +58,10 @@ class CollisionWorld {
   void objectsNear(std::size_t self, const Eigen::Vector3d& low, const Eigen::Vector3d& high,
                    std::vector<std::size_t>& objects) const;
 
+  /// Whether a point lies inside an environment object that is a (closed) triangle mesh: no surface of it
+  /// need be near a body wholly inside, so no pair distance tells.
+  bool insideClosedMesh(std::size_t object, const Eigen::Vector3d& p_W) const;
+
   /// The tangent basis the friction impulses of a point are expressed in (a function of the normal alone,
   /// so that it is the same from step to step while the normal is).
   static void tangentBasis(const Eigen::Vector3d& normal, Eigen::Vector3d& t1, Eigen::Vector3d& t2);

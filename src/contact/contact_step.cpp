@@ -136,17 +136,39 @@ void ContactStep::detectPoints() {
 
 void ContactStep::start(const std::vector<State>& states) {
   placeAll(states);
-  world_->detect(points_, 0.0);
-  for (const ContactPoint& point : points_) {
-    if ((world_->isBody(point.a) && outside_[point.a]) || (world_->isBody(point.b) && outside_[point.b])) continue;
-    if (point.distance < -settings_.penetration_slop) {
-      std::ostringstream message;
-      message << names_[point.a] << " starts inside " << names_[point.b] << " (penetration " << -point.distance
-              << " m, more than the slop of " << settings_.penetration_slop << " m): move one of them apart";
-      throw std::invalid_argument(message.str());
-    }
+  // Body by body through the broad phase, stopping at the first conflict: N log N for a scene that starts
+  // apart, at once for one that does not (every body at one point).
+  for (std::size_t k = 0; k < colliders_.size(); ++k) {
+    if (outside_[k]) continue;
+    const std::string conflict = placementConflict(k, states[colliders_[k]], states, "starts inside");
+    if (!conflict.empty()) throw std::invalid_argument(conflict + ": move one of them apart");
   }
   restart(states);
+}
+
+std::string ContactStep::placementConflict(std::size_t k, const State& state, const std::vector<State>& states,
+                                           const char* verb) {
+  if (!(state.p_WB.norm() <= kContactRange) || !isFinite(state)) return "";  // nothing to meet out there
+  world_->setPose(k, state.p_WB, state.q_WB);
+  const Eigen::Vector3d reach = Eigen::Vector3d::Constant(outer_radius_[k] + settings_.penetration_slop);
+  world_->objectsNear(k, state.p_WB - reach, state.p_WB + reach, near_);
+  std::string conflict;
+  for (std::size_t object : near_) {
+    if (world_->isBody(object) && outside_[object]) continue;
+    const double distance = world_->pairDistance(k, object, 0.0, nullptr);
+    std::ostringstream message;
+    if (distance < -settings_.penetration_slop) {
+      message << names_[k] << " " << verb << " " << names_[object] << " (penetration " << -distance
+              << " m, more than the slop of " << settings_.penetration_slop << " m)";
+    } else if (world_->insideClosedMesh(object, state.p_WB)) {
+      message << names_[k] << " " << verb << " " << names_[object] << " (its centre is inside the closed mesh)";
+    }
+    conflict = message.str();
+    if (!conflict.empty()) break;
+  }
+  const State& current = states[colliders_[k]];
+  if (current.p_WB.norm() <= kContactRange && isFinite(current)) world_->setPose(k, current.p_WB, current.q_WB);
+  return conflict;
 }
 
 void ContactStep::restart(const std::vector<State>& states) {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "collision_world.hpp"
@@ -49,6 +50,11 @@ class ContactStep {
   /// whose result is not finite, keeps its state from before the step and gets `failed[k]`; such a step is
   /// counted as refused and reports no contacts.
   void step(SceneBodies& bodies, const std::vector<char>& running, double h, std::vector<StepStatus>& failed);
+
+  /// Empty if colliding body k may be at `state` (apart from the environment and the other bodies as they
+  /// stand in `states`, within the slop, and not inside a closed environment mesh); otherwise a message
+  /// naming both ("crate <verb> ground (...)"). The body's object goes back to where `states` has it.
+  std::string placementConflict(std::size_t k, const State& state, const std::vector<State>& states, const char* verb);
 
   /// Forgets the touching pairs, warm starts and figures (after a reset or a state set from outside).
   void restart(const std::vector<State>& states);

@@ -9,8 +9,10 @@
 #include <vector>
 
 #include "rigid_body_sim/kinematics.hpp"
+#include "rigid_body_sim/mesh_primitives.hpp"
 #include "rigid_body_sim/references.hpp"
 #include "rigid_body_sim/scene.hpp"
+#include "rigid_body_sim/world.hpp"
 
 using namespace rigid_body;
 
@@ -415,4 +417,65 @@ TEST(ContactRegimes, BodiesPushedIntoEachOtherNeverPass) {
       }
     }
   }
+}
+
+// The start-up check goes body by body through the broad phase and stops at the first conflict: 5 000 boxes
+// at one point are refused, naming two of them, as any pair inside another is (before, the broad phase paired
+// all 12.5 million pairs as the bodies entered it, and the check took every one).
+TEST(ContactRegimes, ThousandsOfBodiesAtOnePointAreRefusedNamingTwo) {
+  const Eigen::Vector3d size(0.2, 0.2, 0.2), zero = Eigen::Vector3d::Zero();
+  ContactSetup setup;
+  std::vector<BodyDefinition> boxes;
+  for (int i = 0; i < 5000; ++i) {
+    setup.bodies.push_back(collisionShape(ShapeType::kBox, size, 0.5, 0.0));
+    setup.bodies.back()->name = "box" + std::to_string(i);
+    boxes.push_back(body(MassProperties::box(1.0, size), Eigen::Vector3d(0, 0, 1), Eigen::Quaterniond::Identity(), zero, zero));
+  }
+  try {
+    Scene scene(boxes, IntegratorType::kRk4, 1e-3, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+    FAIL() << "5 000 boxes at one point were accepted";
+  } catch (const std::invalid_argument& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("box"), std::string::npos) << message;
+    EXPECT_NE(message.find(" starts inside box"), std::string::npos) << message;
+  }
+}
+
+// A body wholly inside a closed environment mesh touches none of its triangles, so no pair distance sees it:
+// the point-in-mesh test does, at start-up and for a state set from outside, which is refused with a message
+// naming both while a state outside is taken.
+TEST(ContactRegimes, ABodyInsideAClosedMeshIsRefusedAtStartAndWhenSet) {
+  const Eigen::Vector3d size(0.2, 0.2, 0.2), zero = Eigen::Vector3d::Zero();
+  CollisionShape hut;
+  hut.type = ShapeType::kMesh;
+  hut.name = "hut";
+  hut.mesh = primitives::box(Eigen::Vector3d(2.0, 2.0, 2.0));
+  ContactSetup setup;
+  setup.environment = {hut};
+  setup.bodies = {collisionShape(ShapeType::kBox, size, 0.5, 0.0)};
+  setup.bodies[0]->name = "crate";
+  const MassProperties crate = MassProperties::box(1.0, size);
+  for (const Eigen::Vector3d& inside : {Eigen::Vector3d(0.1, 0.2, 0.3), Eigen::Vector3d(-0.7, 0.6, -0.5)}) {
+    try {
+      Scene scene({body(crate, inside, Eigen::Quaterniond::Identity(), zero, zero, zero)}, IntegratorType::kRk4, 1e-3,
+                  IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+      FAIL() << "a crate inside the closed mesh was accepted";
+    } catch (const std::invalid_argument& error) {
+      EXPECT_NE(std::string(error.what()).find("crate starts inside hut"), std::string::npos) << error.what();
+    }
+  }
+  WorldSettings settings;
+  settings.owns_clock = true;
+  World world({body(crate, Eigen::Vector3d(3, 0.2, 0.3), Eigen::Quaterniond::Identity(), zero, zero, zero)},
+              IntegratorType::kRk4, IntegratorSettings(), settings, StepAssembly::kLeaveOut, setup);
+  State state = world.scene().state(0);
+  for (const Eigen::Vector3d& refused : {Eigen::Vector3d(0.5, 0, 0), Eigen::Vector3d(0.95, 0, 0)}) {
+    state.p_WB = refused;
+    const CommandReply reply = world.setState(0, state, 0);
+    EXPECT_FALSE(reply.accepted) << "at " << refused.transpose();
+    EXPECT_NE(reply.message.find("crate would be inside hut"), std::string::npos) << reply.message;
+  }
+  EXPECT_EQ(world.scene().state(0).p_WB, Eigen::Vector3d(3, 0.2, 0.3));  // nothing lost
+  state.p_WB = Eigen::Vector3d(1.5, 0, 0);
+  EXPECT_TRUE(world.setState(0, state, 0).accepted);
 }
