@@ -431,6 +431,10 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
     rotate(state.q_WB, solver_bodies_[s].dtheta);
     solver_of_[k] = kUnassigned;
   }
+  rememberContacts(bodies, h, converged);
+}
+
+void ContactStep::rememberContacts(const SceneBodies& bodies, double h, bool converged) {
   warm_next_.clear();
   for (std::size_t i = 0; i < solver_contacts_.size(); ++i) {
     const SolverContact& c = solver_contacts_[i];

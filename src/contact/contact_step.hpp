@@ -113,6 +113,8 @@ class ContactStep {
   void addContact(const ContactPoint& point, const SceneBodies& bodies, bool resting);
   void solveResting(SceneBodies& bodies, double h);
   void limitLiftOfNewContacts();
+  // The solved contacts as next step's warm starts (with their anchors) and, while recording, as reports.
+  void rememberContacts(const SceneBodies& bodies, double h, bool converged);
 
   std::unique_ptr<CollisionWorld> world_;
   std::vector<std::size_t> colliders_;
