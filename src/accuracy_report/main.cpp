@@ -15,6 +15,7 @@
 #include <string>
 
 #include "contact_report.hpp"
+#include "simbenchmark.hpp"
 #include "measurements.hpp"
 #include "rigid_body_sim/integrators.hpp"
 
@@ -44,13 +45,17 @@ bool parseOptions(int argc, char** argv, Options& options, int& exit_code) {
       options.out = argv[++i];
     } else if (arg == "--only-stability") {
       options.only_stability = true;
+    } else if (arg == "--only-simbenchmark") {
+      options.only_simbenchmark = true;
     } else if (arg == "--substitute" && i + 1 < argc && parseSubstitution(argv[++i])) {
       options.substituted = true;
     } else {
-      std::cerr << "usage: accuracy_report [--out DIR] [--quick] [--only-stability] [--substitute CLAIMED:RUN]\n"
+      std::cerr << "usage: accuracy_report [--out DIR] [--quick] [--only-stability | --only-simbenchmark]\n"
+                   "                       [--substitute CLAIMED:RUN]\n"
                    "  writes work_precision.csv, order.csv, control_rate.csv, error_growth.csv, stability.csv,\n"
                    "  their PNG figures (with gnuplot) and REPORT.md into DIR (default ./report).\n"
                    "  --only-stability: the stiff and extreme suite only (stability.csv).\n"
+                   "  --only-simbenchmark: SimBenchmark's scenes only (simbenchmark.csv, the table on stdout).\n"
                    "  --substitute CLAIMED:RUN: runs method RUN wherever CLAIMED is named (a mutation check:\n"
                    "  CLAIMED's claims should then fail if RUN is of lower order). Methods: " +
                        rigid_body::integratorNameList() + "\n";
@@ -90,6 +95,10 @@ int main(int argc, char** argv) {
               << claims.first << " claimed thresholds met\n";
     return 0;
   }
+  if (options.only_simbenchmark) {
+    writeSimBenchmarkSection(std::cout, runSimBenchmark(options), options.quick);
+    return 0;
+  }
   Results results;
   results.scenes = workPrecisionScenes();
   results.at_control_step = runWorkPrecision(options, sweep, results.scenes);
@@ -104,6 +113,8 @@ int main(int argc, char** argv) {
   results.contact = runContactWorkPrecision(options);
   const std::vector<StabilityRow> contact_rows = runContactStability(options.quick);
   results.stability.insert(results.stability.end(), contact_rows.begin(), contact_rows.end());
+  std::cerr << "  SimBenchmark's scenes\n";
+  results.simbenchmark = runSimBenchmark(options);
   writeStabilityCsv(options, results.stability);
   if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
     results.figures = drawFigures(options, results.scenes);

@@ -17,6 +17,7 @@ struct Options {
   std::string out = "report";
   bool quick = false;
   bool only_stability = false;  ///< the stiff and extreme suite alone
+  bool only_simbenchmark = false;  ///< SimBenchmark's scenes alone
   bool substituted = false;     ///< --substitute was given
 };
 
@@ -59,6 +60,17 @@ struct ContactRow {
   double cpu_per_second;    ///< CPU time per simulated second [s]
 };
 
+// One run of a SimBenchmark scene (simbenchmark.hpp).
+struct SimBenchmarkRow {
+  std::string scene;       ///< "bouncing", "rolling" or "666"
+  std::string integrator;  ///< integrator name
+  double dt;               ///< [s]
+  int iterations;          ///< the contact solver's sweeps per step
+  double error;            ///< the scene's own metric (mean over the steps of a squared error)
+  double cpu_seconds;      ///< CPU time of the whole simulated run [s], as SimBenchmark publishes it
+  double cpu_per_body_step;  ///< [s]
+};
+
 struct Results {
   std::vector<Scene> scenes;
   SceneTable at_control_step;
@@ -67,6 +79,7 @@ struct Results {
   std::map<std::string, LongRunSummary> long_run;
   std::vector<StabilityRow> stability;
   std::vector<ContactRow> contact;
+  std::vector<SimBenchmarkRow> simbenchmark;
   bool figures = false;
   bool contact_figures = false;
 };

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "contact_report.hpp"
+#include "simbenchmark.hpp"
 #include "measurements.hpp"
 #include "rigid_body_sim/integrators.hpp"
 #include "rigid_body_sim/number_format.hpp"
@@ -282,6 +283,7 @@ void writeMarkdown(std::ostream& md, const Options& options, const Sweep& sweep,
   writeLongRun(md, results, sweep);
   writeStability(md, results, options.quick);
   writeContactSection(md, results.contact, results.contact_figures);
+  writeSimBenchmarkSection(md, results.simbenchmark, options.quick);
   writeRecommendations(md, results);
 }
 

@@ -35,6 +35,47 @@ ContactPoint pointFrom(const btManifoldPoint& p, const btCollisionObject* a, con
   return point;
 }
 
+// A sphere meets another shape where the normal through its centre leaves it, so its normal force passes
+// through the centre. Bullet's multi-point iterations rotate a shape a little, find the closest points again
+// and rotate them back; for a sphere that puts points r·θ beside that line, and the manifold, which merges
+// points nearer than its breaking threshold, may keep such a point instead of the true one (a ball on a
+// 20 m box had its only point 1 cm off the line and 5e-5 m too far out, δ²/2r). The normal force then turns a
+// resting ball, which rolls off a flat box. So the points of a pair with a sphere are rebuilt on the line
+// through the centre c along the normal n: the sphere's point at c − r s n (s the side of the other point,
+// whose distance along n is exact on a face) and the other point moved along the face onto the line; the
+// iterations' points then coincide and one is kept. A sphere touches one convex shape at one point.
+const btSphereShape* sphereOf(const btCollisionObject* object) {
+  const btCollisionShape* shape = object->getCollisionShape();
+  return shape->getShapeType() == SPHERE_SHAPE_PROXYTYPE ? static_cast<const btSphereShape*>(shape) : nullptr;
+}
+
+void ontoSphereNormalLine(const btCollisionObject* sphere, ContactPoint& point) {
+  const Eigen::Vector3d c = fromBt(sphere->getWorldTransform().getOrigin());
+  const double r = sphereOf(sphere)->getRadius();
+  const Eigen::Vector3d& n = point.normal;
+  // The witness on the sphere is the one at its radius from the centre; the other lies on the other shape.
+  const bool sphere_is_a = std::abs((point.on_a - c).norm() - r) <= std::abs((point.on_b - c).norm() - r);
+  Eigen::Vector3d& on_sphere = sphere_is_a ? point.on_a : point.on_b;
+  Eigen::Vector3d& on_other = sphere_is_a ? point.on_b : point.on_a;
+  const double along = (on_other - c).dot(n);
+  on_other = c + along * n;
+  on_sphere = c + (along < 0.0 ? -r : r) * n;
+  point.distance = (point.on_a - point.on_b).dot(n);
+}
+
+// Adds a pair's points from `first` on; with a sphere in the pair, one point per normal line.
+void addSpherePoint(const btCollisionObject* sphere, ContactPoint point, std::size_t first, std::vector<ContactPoint>& points) {
+  ontoSphereNormalLine(sphere, point);
+  const double radius = static_cast<const btSphereShape*>(sphere->getCollisionShape())->getRadius();
+  for (std::size_t i = first; i < points.size(); ++i) {
+    if ((points[i].on_b - point.on_b).norm() <= 1e-3 * radius && points[i].normal.dot(point.normal) > 1.0 - 1e-9) {
+      if (point.distance < points[i].distance) points[i] = point;
+      return;
+    }
+  }
+  points.push_back(point);
+}
+
 // Bullet's dispatcher, which reports the points of a pair up to `near_distance` apart (its own near callback
 // asks for touching points only: two spheres 1e-17 m apart had no contact, so a ball resting against
 // another did not count as touching, and an impact could not travel through the pair).
@@ -275,9 +316,18 @@ void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distan
   impl_->broadphase.m_deferedcollide = false;  // paired once as a whole; from now on as objects move
   for (int m = 0; m < dispatcher.getNumManifolds(); ++m) {
     btPersistentManifold* manifold = dispatcher.getManifoldByIndexInternal(m);
+    const std::size_t first = points.size();
     for (int c = 0; c < manifold->getNumContacts(); ++c) {
       const btManifoldPoint& p = manifold->getContactPoint(c);
-      if (p.getDistance() <= max_distance) points.push_back(pointFrom(p, manifold->getBody0(), manifold->getBody1()));
+      if (p.getDistance() > max_distance) continue;
+      const ContactPoint point = pointFrom(p, manifold->getBody0(), manifold->getBody1());
+      if (sphereOf(manifold->getBody0()) != nullptr) {
+        addSpherePoint(manifold->getBody0(), point, first, points);
+      } else if (sphereOf(manifold->getBody1()) != nullptr) {
+        addSpherePoint(manifold->getBody1(), point, first, points);
+      } else {
+        points.push_back(point);
+      }
     }
   }
   for (std::size_t body = 0; body < impl_->body_count; ++body) {

@@ -79,7 +79,7 @@ int AccuracyReport::exit_code_ = -1;
 TEST_F(AccuracyReport, WritesEveryFile) {
   ASSERT_EQ(exit_code_, 0);
   for (const char* name : {"REPORT.md", "work_precision.csv", "order.csv", "control_rate.csv", "error_growth.csv",
-                           "stability.csv", "contact.csv"}) {
+                           "stability.csv", "contact.csv", "simbenchmark.csv"}) {
     EXPECT_TRUE(exists(file(name))) << name;
   }
   // Figures when gnuplot is there (scripts/test.sh installs it).
@@ -175,6 +175,30 @@ TEST_F(AccuracyReport, ContactSectionShowsWhatEventLocationBuys) {
   std::ifstream markdown(file("REPORT.md"));
   const std::string text((std::istreambuf_iterator<char>(markdown)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("### Which contact settings when"), std::string::npos);
+}
+
+// SimBenchmark's scenes (docs/report.md). Bouncing: rk4 integrates free flight (a quadratic in t) exactly and
+// a located impact with e = 1 and no friction keeps the speed, so the 49 balls' energy E0 = 49 m g H may
+// drift by rounding only: the mean squared error is held to (1e-9 E0)². Rolling: the rolling bound,
+// 1 % of the closed form, on the box's final speed a₁ T (references.md §4.11), squared, bounds the mean of
+// the squared errors of box and ball. 666 is reported only (its penetration is the solver's slop).
+TEST_F(AccuracyReport, SimBenchmarkScenesKeepEnergyAndRoll) {
+  const auto rows = readCsv(file("simbenchmark.csv"));
+  std::set<std::string> scenes;
+  for (const auto& row : rows) {
+    scenes.insert(row.at("scene"));
+    EXPECT_GT(std::stod(row.at("cpu_seconds")), 0.0);
+    if (row.at("integrator") != "rk4") continue;
+    const double error = std::stod(row.at("error"));
+    if (row.at("scene") == "bouncing") {
+      const double energy = 49 * 10.0 * 9.81 * 5.0;
+      EXPECT_LE(error, std::pow(1e-9 * energy, 2)) << "h " << row.at("dt");
+    } else if (row.at("scene") == "rolling") {
+      const double f1 = 0.4 * 35.0 * 9.81, f2 = (150.0 - f1) / 60.0, a_box = 3.5 * f2, duration = 0.5;  // quick
+      EXPECT_LE(error, std::pow(0.01 * a_box * duration, 2)) << row.at("iterations") << " iterations";
+    }
+  }
+  EXPECT_EQ(scenes, (std::set<std::string>{"bouncing", "rolling", "666"}));
 }
 
 TEST_F(AccuracyReport, EveryClaimedThresholdIsMet) {
