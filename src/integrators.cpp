@@ -14,27 +14,37 @@ namespace rigid_body {
 using namespace integrators;
 
 const std::vector<IntegratorInfo>& integratorRegistry() {
+  // In the enumeration's order. type, name, order, f evaluations a step, adaptive, exact damping, constant-force weight, lane kernel, summary
   static const std::vector<IntegratorInfo> registry = {
-      {IntegratorType::kExplicitEuler, "explicit_euler", 1, "Y += h f(Y), q normalised"},
-      {IntegratorType::kSemiImplicitEuler, "semi_implicit_euler", 1, "momenta first, then x and q = exp(w h) q"},
-      {IntegratorType::kRk4, "rk4", 4, "classic Runge-Kutta on Y, q normalised"},
-      {IntegratorType::kRkmk4, "rkmk4", 4, "Runge-Kutta-Munthe-Kaas: RK4 with q on the rotation group"},
-      {IntegratorType::kBuss, "buss", 2, "Buss's augmented second-order rotation update"},
-      {IntegratorType::kSymplecticSplitting, "symplectic_splitting", 2, "Strang splitting with exact free rotations"},
-      {IntegratorType::kImplicitMidpoint, "implicit_midpoint", 2, "midpoint rule on body momentum, Cayley rotation"},
-      {IntegratorType::kDopri5, "dopri5", 5, "Dormand-Prince 5(4), error control and dense output"},
+      {IntegratorType::kExplicitEuler, "explicit_euler", 1, 1, false, false, 0.0, true, "Y += h f(Y), q normalised"},
+      {IntegratorType::kSemiImplicitEuler, "semi_implicit_euler", 1, 1, false, false, 1.0, true,
+       "momenta first, then x and q = exp(w h) q"},
+      {IntegratorType::kRk4, "rk4", 4, 4, false, false, 0.5, true, "classic Runge-Kutta on Y, q normalised"},
+      {IntegratorType::kRkmk4, "rkmk4", 4, 4, false, false, 0.5, false,
+       "Runge-Kutta-Munthe-Kaas: RK4 with q on the rotation group"},
+      {IntegratorType::kBuss, "buss", 2, 1, false, false, 0.5, false, "Buss's augmented second-order rotation update"},
+      {IntegratorType::kSymplecticSplitting, "symplectic_splitting", 2, 2, false, true, 0.5, false,
+       "Strang splitting with exact free rotations"},
+      {IntegratorType::kImplicitMidpoint, "implicit_midpoint", 2, 2, false, true, 0.5, false,
+       "midpoint rule on body momentum, Cayley rotation"},
+      {IntegratorType::kDopri5, "dopri5", 5, 6, true, false, 0.5, false,
+       "Dormand-Prince 5(4), error control and dense output"},
   };
   return registry;
 }
 
-namespace {
-const IntegratorInfo& infoOf(IntegratorType type) {
-  for (const IntegratorInfo& info : integratorRegistry()) {
-    if (info.type == type) return info;
-  }
-  throw std::logic_error("integrator type missing from the registry");
+// The rows are in the enumeration's order, so a row is found by its index (every step asks for one).
+const IntegratorInfo& integratorInfo(IntegratorType type) {
+  static const bool in_order = [] {
+    for (std::size_t i = 0; i < integratorRegistry().size(); ++i) {
+      if (static_cast<std::size_t>(integratorRegistry()[i].type) != i) return false;
+    }
+    return true;
+  }();
+  const std::size_t index = static_cast<std::size_t>(type);
+  if (!in_order || index >= integratorRegistry().size()) throw std::logic_error("integrator registry out of order");
+  return integratorRegistry()[index];
 }
-}  // namespace
 
 const std::vector<IntegratorType>& allIntegrators() {
   static const std::vector<IntegratorType> all = [] {
@@ -45,7 +55,7 @@ const std::vector<IntegratorType>& allIntegrators() {
   return all;
 }
 
-const std::string& integratorName(IntegratorType type) { return infoOf(type).name; }
+const std::string& integratorName(IntegratorType type) { return integratorInfo(type).name; }
 
 std::string integratorNameList() {
   std::string list;
@@ -60,7 +70,7 @@ IntegratorType integratorFromName(const std::string& name) {
   throw std::invalid_argument("unknown integrator '" + name + "', valid names are: " + integratorNameList());
 }
 
-int nominalOrder(IntegratorType type) { return infoOf(type).order; }
+int nominalOrder(IntegratorType type) { return integratorInfo(type).order; }
 
 bool Integrator::acceptable(const State& next) {
   // The batched steps' rule, for one lane: the same test whether a body steps alone or in a batch.
@@ -86,17 +96,17 @@ StepStatus loneStep(bool wide, const Model& model, const StepTerms& terms, const
 
 void Integrator::countSteps(std::uint64_t steps) {
   statistics_.steps += steps;
-  statistics_.rhs_evaluations += steps * laneRhsEvaluations(type_);
+  statistics_.rhs_evaluations += steps * static_cast<std::uint64_t>(info_->rhs_evaluations);
 }
 
 Integrator::Integrator(IntegratorType type, const IntegratorSettings& settings)
-    : type_(type), settings_(settings), wide_(settings.wide_instructions && wideLoneStepsAvailable()) {}
+    : type_(type), info_(&integratorInfo(type)), settings_(settings), wide_(settings.wide_instructions && wideLoneStepsAvailable()) {}
 
 StepStatus Integrator::step(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h,
                             State& state) {
   if (!std::isfinite(h) || h < 0.0) return StepStatus::kInvalidStep;
   if (h == 0.0) return StepStatus::kOk;
-  if (hasLaneStep(type_)) {  // these commit in place, and only a step that passes acceptable()'s test
+  if (info_->lane_kernel) {  // these commit in place, and only a step that passes acceptable()'s test
     const StepStatus status = doStep(model, terms, input, h, state);
     if (status == StepStatus::kOk) ++statistics_.steps;
     return status;
@@ -112,29 +122,25 @@ StepStatus Integrator::step(const Model& model, const StepTerms& terms, const Ap
 
 StepStatus Integrator::doStep(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h,
                               State& state) {
+  if (!info_->adaptive) statistics_.rhs_evaluations += info_->rhs_evaluations;
   switch (type_) {
     case IntegratorType::kExplicitEuler:
     case IntegratorType::kSemiImplicitEuler:
     case IntegratorType::kRk4:
-      statistics_.rhs_evaluations += laneRhsEvaluations(type_);
       return withMethod(type_, [&](auto method) {
         return loneStep<decltype(method)::value>(wide_, model, terms, input, h, state);
       });
     case IntegratorType::kRkmk4: {
       Stages<4> stages;
-      statistics_.rhs_evaluations += 4;
       state = normalised(rungeKutta(kRk4Tableau, OrientationUpdate::kLieGroup, model, terms, input, h, state, stages));
       return StepStatus::kOk;
     }
     case IntegratorType::kBuss:
-      statistics_.rhs_evaluations += 1;
       state = bussStep(model, terms, input, h, state);
       return StepStatus::kOk;
-    case IntegratorType::kSymplecticSplitting:
-      statistics_.rhs_evaluations += 2;  // two kicks
+    case IntegratorType::kSymplecticSplitting:  // f's equivalent: two kicks
       return symplecticSplittingStep(model, terms, input, h, state);
     case IntegratorType::kImplicitMidpoint:
-      statistics_.rhs_evaluations += 2;
       return implicitMidpointStep(model, terms, input, h, settings_, statistics_.newton_iterations, state);
     case IntegratorType::kDopri5:
       return dopri5Step(model, terms, input, h, state);

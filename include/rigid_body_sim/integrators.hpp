@@ -15,8 +15,9 @@
 
 namespace rigid_body {
 
-/// The available methods. A new method goes here, in the registry table of integrators.cpp (name, order,
-/// summary) and in Integrator::doStep's switch.
+/// The available methods. A new method goes here, in the registry table of integrators.cpp (one row: what
+/// the node, the report, the contact step and the tests ask of a method) and in Integrator::doStep's switch;
+/// the typed tests (test_integrator_suite.cpp) run every registered method.
 enum class IntegratorType {
   kExplicitEuler,        ///< Y ← Y + h f(Y), then q normalised. Order 1.
   kSemiImplicitEuler,    ///< momenta first, then x with the new v and q ← exp(ω h) ⊗ q. Order 1.
@@ -28,16 +29,34 @@ enum class IntegratorType {
   kDopri5,               ///< Dormand–Prince 5(4), error control and dense output. Order 5.
 };
 
-/// One row of the registry: everything the node, the report and the documentation say about a method.
+/// One row of the registry: everything the node, the report, the contact step and the documentation ask of
+/// a method, so that none of them tests a method by name.
 struct IntegratorInfo {
   IntegratorType type;
-  std::string name;     ///< the parameter value, e.g. "rk4"
-  int order;            ///< nominal order of accuracy: the global error is O(h^order)
+  std::string name;  ///< the parameter value, e.g. "rk4"
+  int order;         ///< nominal order of accuracy: the global error is O(h^order)
+  /// Evaluations of f(Y) (or their equivalent in the split methods) per step; dopri5: per internal step
+  /// after the first, which takes one more (first same as last).
+  int rhs_evaluations;
+  bool adaptive;  ///< chooses its own internal steps against abs/rel tolerances (the step h is an interval)
+  /// Integrates linear damping by its exact exponential flow (the Strang splittings): a stiff damping
+  /// decays monotonically at any h.
+  bool exact_damping;
+  /// c in Δx = c h² a: how far one step moves a body from rest under a constant acceleration a. Exact motion
+  /// and every method of order ≥ 2 give ½ (Σ bᵢcᵢ = ½ for a Runge–Kutta method); explicit Euler moves x
+  /// with the old velocity (0), semi-implicit Euler with the new one (1). The contact step uses it to undo a
+  /// resting body's fall exactly (docs/contact.md).
+  double constant_force_weight;
+  /// Steps bodies several at a time in vector lanes (src/integrators/lane_steps.hpp, docs/architecture.md).
+  bool lane_kernel;
   const char* summary;  ///< one line for tables and logs
 };
 
 /// The registry, in the order of the documentation.
 const std::vector<IntegratorInfo>& integratorRegistry();
+
+/// The row of `type`.
+const IntegratorInfo& integratorInfo(IntegratorType type);
 
 /// Every method, in the order of the documentation.
 const std::vector<IntegratorType>& allIntegrators();
@@ -119,6 +138,7 @@ class Integrator {
   StepStatus dopri5Step(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h, State& state);
 
   IntegratorType type_;
+  const IntegratorInfo* info_;  // its registry row
   IntegratorSettings settings_;
   bool wide_;  // settings_.wide_instructions and the CPU has them
   IntegratorStatistics statistics_;

@@ -128,7 +128,7 @@ SceneTable runWorkPrecision(const Options& options, const Sweep& sweep, const st
   for (const Scene& scene : scenes) {
     std::cerr << "  work precision: " << scene.name << "\n";
     for (IntegratorType type : allIntegrators()) {
-      const bool adaptive = type == IntegratorType::kDopri5;
+      const bool adaptive = integratorInfo(type).adaptive;
       for (double value : adaptive ? sweep.tolerances : sweep.steps) {
         IntegratorSettings settings;
         double h = value;
@@ -157,7 +157,7 @@ std::map<std::string, double> runOrder(const Options& options) {
   std::map<std::string, double> fitted;
   const Scene scene = asymmetricScene(2.0);
   for (IntegratorType type : allIntegrators()) {
-    if (type == IntegratorType::kDopri5) continue;  // adaptive: its error follows the tolerance
+    if (integratorInfo(type).adaptive) continue;  // its error follows the tolerance
     const int nominal = nominalOrder(type);
     const double h0 = nominal == 4 ? 0.1 : 0.02;  // the asymptotic range, above rounding
     std::vector<std::pair<double, double>> points;

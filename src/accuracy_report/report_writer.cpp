@@ -217,7 +217,7 @@ void writeRecommendations(std::ostream& md, const Results& results) {
   for (const StabilityRow& row : results.stability) {
     // dopri5 chooses its own internal steps: the fixed-step methods compete here.
     if (row.case_name == "high_spin" && row.metric.rfind("largest stable", 0) == 0 && row.value > stable_value &&
-        row.integrator != integratorName(IntegratorType::kDopri5)) {
+        !integratorInfo(integratorFromName(row.integrator)).adaptive) {
       stable_value = row.value, stable_name = row.integrator;
     }
   }

@@ -222,7 +222,7 @@ void scaleInvariance(Rows& rows, IntegratorType type) {
   // Scaling is exact in real arithmetic; in doubles each of the 1e4 steps may round differently, ~1e-16 a
   // step relative: 1e4 · 1e-16 = 1e-12.
   rows.add("scale_1e-9_1e9", type, "max relative difference of x and q to s = 1 over 1e4 steps", worst, "<= 1e-12",
-           type != IntegratorType::kDopri5, worst <= 1e-12);
+           !rigid_body::integratorInfo(type).adaptive, worst <= 1e-12);
 }
 
 // h = 1 s: no NaN and the energy stays in [G²/2I_max, G²/2I_min]; the error is reported.
@@ -259,7 +259,7 @@ void stiffDamping(Rows& rows, IntegratorType type) {
   }
   // Claimed where damping is integrated exactly (the Strang methods' exponential flow E). dopri5 adapts
   // and stays stable but chatters around zero at its absolute tolerance: reported, not claimed.
-  const bool claims = type == IntegratorType::kSymplecticSplitting || type == IntegratorType::kImplicitMidpoint;
+  const bool claims = rigid_body::integratorInfo(type).exact_damping;
   rows.add("stiff_damping", type, "monotone decay at h = 10 ms, c/m = 1000/s (1 = yes)", monotone ? 1 : 0, "= 1", claims,
            monotone);
   rows.add("stiff_damping", type, "|v| after 1 s / |v0| (exact: e^-1000)",
@@ -291,7 +291,7 @@ void toleranceClaim(Rows& rows, IntegratorType type) {
 // asymptotic range above rounding (the integrator suite's order test uses the same: 0.1 s for order 4,
 // 0.02 s for the others). dopri5 chooses its own steps and claims its tolerance instead (high_spin).
 void orderClaims(Rows& rows, IntegratorType type) {
-  if (type == IntegratorType::kDopri5) {
+  if (rigid_body::integratorInfo(type).adaptive) {
     toleranceClaim(rows, type);
     return;
   }

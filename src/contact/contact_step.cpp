@@ -31,21 +31,6 @@ bool isCurved(ShapeType type) {
   return type == ShapeType::kSphere || type == ShapeType::kCylinder || type == ShapeType::kCapsule;
 }
 
-// c in Δx = c h² a: how far one step of the method moves a body under a constant acceleration a, from rest.
-// Exact motion, and every method of order ≥ 2, gives ½ (Σ bᵢcᵢ = ½ for a Runge–Kutta method); explicit Euler
-// moves x with the old velocity (0); semi-implicit Euler with the new one (1). Using the method's own c for
-// the contact force makes a body at rest exactly at rest: the contact undoes the free step's fall.
-double constantForceWeight(IntegratorType type) {
-  switch (type) {
-    case IntegratorType::kExplicitEuler:
-      return 0.0;
-    case IntegratorType::kSemiImplicitEuler:
-      return 1.0;
-    default:
-      return 0.5;
-  }
-}
-
 void rotate(Eigen::Quaterniond& q, const Eigen::Vector3d& rotation_W) {
   const double angle = rotation_W.norm();
   if (angle == 0.0) return;
@@ -414,7 +399,7 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
   // The impulses stand for a contact force constant over the step: besides the momenta they move the body
   // by c h Δv (and turn it by c h Δω), as the integrator would have moved it under that force; then the
   // projection.
-  const double weight = h * constantForceWeight(integrator_type_);
+  const double weight = h * integratorInfo(integrator_type_).constant_force_weight;
   for (SolverBody& s : solver_bodies_) {
     s.dx = weight * s.inverse_mass * s.dP;
     s.dtheta = weight * (s.inverse_inertia_W * s.dL);

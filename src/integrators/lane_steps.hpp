@@ -691,10 +691,7 @@ RIGID_BODY_LANE_INLINE void acceptableLanes(const LaneState<T>& y, std::size_t l
 }
 
 /// Whether a method steps by these kernels.
-inline bool hasLaneStep(IntegratorType type) {
-  return type == IntegratorType::kRk4 || type == IntegratorType::kExplicitEuler ||
-         type == IntegratorType::kSemiImplicitEuler;
-}
+inline bool hasLaneStep(IntegratorType type) { return integratorInfo(type).lane_kernel; }
 
 /// f(std::integral_constant<IntegratorType, kType>{}) for the method with a lane kernel that `type` names
 /// (hasLaneStep), and what f returns: each method's code a compile-time choice, the switch once.
@@ -709,9 +706,6 @@ decltype(auto) withMethod(IntegratorType type, F&& f) {
       return f(std::integral_constant<IntegratorType, IntegratorType::kExplicitEuler>{});
   }
 }
-
-/// f evaluations in one step of a method with a lane kernel: rk4's four stages, the Eulers' one.
-constexpr std::uint64_t laneRhsEvaluations(IntegratorType type) { return type == IntegratorType::kRk4 ? 4 : 1; }
 
 /// One step of a method with a lane kernel (hasLaneStep), for the lanes as T holds them.
 template <class T>

@@ -515,7 +515,7 @@ rigid_body::ContactSetup NodeConfig::contactSetup() const {
 std::string NodeConfig::describe() const {
   std::ostringstream out;
   out << "rate " << rate << " Hz, dt " << dt << " s, integrator " << rigid_body::integratorName(integrator);
-  if (integrator == rigid_body::IntegratorType::kDopri5) {
+  if (rigid_body::integratorInfo(integrator).adaptive) {
     out << " (abs_tolerance " << integrator_settings.abs_tolerance << ", rel_tolerance "
         << integrator_settings.rel_tolerance << ")";
   }

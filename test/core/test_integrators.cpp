@@ -59,6 +59,24 @@ TEST_P(EveryIntegrator, ConstantForceGivesTheKnownDiscreteParabola) {
   EXPECT_EQ(rotationAngleBetween(end.q_WB, start.q_WB), 0.0);
 }
 
+// The registry's constant-force weight, which the contact step trusts to undo a resting body's fall, is the
+// method's own: one step from rest under a constant acceleration a moves x by c h² a (every method's P is
+// exact, so a wrong row — say ½ for semi-implicit Euler — is off by half a step's fall).
+TEST_P(EveryIntegrator, RegistryRowDescribesTheMethod) {
+  const IntegratorInfo& info = integratorInfo(GetParam());
+  EXPECT_EQ(info.type, GetParam());
+  EXPECT_EQ(integratorFromName(info.name), GetParam());
+  const double m = 2.0, h = 0.01;
+  const Model model{MassProperties::box(m, Eigen::Vector3d(0.4, 0.2, 0.1)), ForceModel{}};
+  AppliedWrench input;
+  input.world.force = Eigen::Vector3d(4.0, -2.0, 1.0);
+  State state;
+  Integrator integrator(GetParam());
+  ASSERT_EQ(integrator.step(model, input, h, state), StepStatus::kOk);
+  const Eigen::Vector3d a = input.world.force / m;
+  EXPECT_LT((state.p_WB - info.constant_force_weight * h * h * a).norm(), 1e-15) << state.p_WB.transpose();
+}
+
 TEST_P(EveryIntegrator, TorqueFreeSpinAboutAPrincipalAxisKeepsOmega) {
   const Model model{MassProperties::fromInertia(1.0, Eigen::Vector3d(1.0, 2.0, 3.0).asDiagonal().toDenseMatrix()),
                     ForceModel{}};
