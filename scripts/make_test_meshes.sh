@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the test meshes in test/meshes (committed; run this after changing src/make_test_meshes.cpp).
+# Regenerates the test meshes in test/meshes (committed; run this after changing src/tools/make_test_meshes.cpp).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 install_dependencies

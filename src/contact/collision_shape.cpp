@@ -5,7 +5,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "rigid_body_sim/contact.hpp"
 
 namespace rigid_body {
 
@@ -137,27 +136,6 @@ void validateShape(const CollisionShape& shape, bool in_environment) {
       return;
     }
   }
-}
-
-void validateContactSettings(const ContactSettings& s) {
-  auto require = [](bool ok, const char* message) {
-    if (!ok) throw std::invalid_argument(message);
-  };
-  require(s.iterations >= 1 && s.iterations <= 1000, "contact iterations must be an integer in [1, 1000]");
-  require(s.position_iterations >= 0 && s.position_iterations <= 1000,
-          "contact position_iterations must be an integer in [0, 1000]");
-  require(s.restitution_threshold >= 0.0 && std::isfinite(s.restitution_threshold),
-          "contact restitution_threshold must be a finite number >= 0 [m/s]");
-  require(s.penetration_slop >= 0.0 && s.penetration_slop <= 1.0, "contact penetration_slop must be in [0, 1] [m]");
-  require(s.position_correction >= 0.0 && s.position_correction <= 1.0, "contact position_correction must be in [0, 1]");
-  require(s.event_tolerance > 0.0 && s.event_tolerance <= 1.0, "contact event_tolerance must be in (0, 1] [s]");
-}
-
-bool ContactSetup::active() const {
-  for (const auto& body : bodies) {
-    if (body) return true;
-  }
-  return false;
 }
 
 }  // namespace rigid_body
