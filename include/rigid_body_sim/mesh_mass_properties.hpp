@@ -43,7 +43,8 @@ struct MeshMassProperties {
   std::vector<std::string> warnings;    ///< repairs made to the mesh (e.g. flipped inside-out)
 };
 
-/// The most ray–triangle tests `sampling` may make (points × triangles): ~10 s on a 2-core VM at ~5 ns a test.
+/// The most ray–triangle tests `sampling` may make (points × triangles): seconds of start-up, not more
+/// (docs/performance_log.md#sampling-budget).
 /// The largest mesh file (kDefaultMaxMeshBytes, ~5 million triangles) at the most samples the node takes (1e7)
 /// would be 5e13 tests, days of start-up.
 constexpr std::uint64_t kMaxSamplingTests = 2000000000;

@@ -86,7 +86,8 @@ class Scene {
   /// colliding bodies and their contact step run on the caller.
   void setThreads(std::size_t threads, std::size_t bodies_per_block = kBodiesPerBlock);
   std::size_t threads() const { return pool_->threads(); }
-  /// 64 bodies are ~13 µs of rk4 work per step: enough to pay for handing a block to another thread.
+  /// A block of 64 bodies is enough rk4 work per step to pay for handing it to another thread
+  /// (docs/performance_log.md#block-size).
   static constexpr std::size_t kBodiesPerBlock = 64;
 
   std::size_t bodyCount() const { return states_.size(); }

@@ -44,7 +44,7 @@
 // whatever the compiler's size heuristics say: left to them, GCC kept laneWrench and the semi-implicit step
 // as calls (perf), each a stack frame of lane structs, and under link-time optimisation its choices for the
 // small helpers followed its budget for the whole library, so that edits to other files moved the lone step
-// by up to 15 % (docs/performance.md).
+// (docs/performance_log.md#forced-inlining).
 #define RIGID_BODY_LANE_INLINE inline __attribute__((always_inline))
 
 namespace rigid_body {
@@ -158,8 +158,8 @@ struct LaneRotation {
     const T x = y.qx, yq = y.qy, z = y.qz, w = y.qw;
     const T xx = x * x, yy = yq * yq, zz = z * z, ww = w * w;
     // 2(xy − wz) as (2x) y − (2w) z: doubling is exact, so the same bits (but for a product below 2.2e-308,
-    // lost in the sum beside it either way) with three additions in place of six multiplications (general
-    // rk4 114 -> 107 ns, docs/performance.md).
+    // lost in the sum beside it either way) with three additions in place of six multiplications
+    // (docs/performance_log.md#doubled-products).
     const T x2 = x + x, y2 = yq + yq, w2 = w + w;
     const T xy = x2 * yq, xz = x2 * z, yz = y2 * z, wx = w2 * x, wy = w2 * yq, wz = w2 * z;
     R.m[0][0] = ww + xx - yy - zz;
@@ -343,8 +343,8 @@ RIGID_BODY_LANE_INLINE LaneState<T> laneRk4Step(const LaneBody<T>& b, const Step
   // Y + h/6 k1 + h/3 k2 + h/3 k3 + h/6 k4, each rate scaled before the sum: rates near the largest double
   // (a wrench of 1e308 N) then overflow no sooner than the state they move. The same sums in the same order
   // (so the same bits) either way, but one lane adds each rate as it arrives and four lanes add them after
-  // the last stage: GCC's registers follow the code as written. Adding as they arrive took the lone general
-  // rk4 step 109 -> 105 ns and the gravity-only one 57 -> 26 ns, and a batch of 1 000 bodies 460 -> 660 µs.
+  // the last stage: GCC's registers follow the code as written, and each order is the faster one for its
+  // lane count (docs/performance_log.md#rk4-sums).
   if constexpr (kLaneCount<T> == 1) {
     const T third = T{} + h / 3.0;
     LaneRates<T> k = laneRates(b, terms, y);
@@ -501,7 +501,7 @@ RIGID_BODY_LANE_INLINE void storeState(const LaneState<T>& y, std::size_t i, Sta
 // what they read and write (by reference: a Lanes argument by value is passed one way in an AVX file and
 // another in an SSE2 one, and both files instantiate these). A reference to the step's own state or body
 // would let it escape, and GCC then kept every field of both in memory for the whole step, on every path
-// (general semi-implicit Euler step -3 % without).
+// (docs/performance_log.md#quaternion-copies).
 template <class T>
 struct LaneQuaternion {
   T x, y, z, w;
@@ -757,8 +757,8 @@ RIGID_BODY_LANE_INLINE void runLanes(IntegratorType type, const LaneBody<T>& b, 
 inline constexpr StepTerms kAllTerms{};
 
 /// runLanes with the general terms as constants where they are all assembled, for one lane under semi-implicit
-/// Euler, as laneStepOf runs its step (it says why): a Scene's lone general body 52 -> 47 ns a step
-/// (scene_benchmark's general_body; rk4's loop measured within 2 % so and keeps the terms as they come).
+/// Euler, as laneStepOf runs its step (it says why); rk4's loop gains nothing by it and keeps the terms as they
+/// come (docs/performance_log.md#constant-terms).
 template <IntegratorType kType, class T>
 RIGID_BODY_LANE_INLINE void runLanesWithTerms(const LaneBody<T>& b, const StepTerms& terms, double h,
                                               std::int64_t steps, std::size_t count, LaneState<T>& y,
@@ -786,8 +786,7 @@ void runLone(bool wide, IntegratorType type, const LaneBody<double>& b, const St
 
 // One body's step by its lane kernel, T = double: load, step, test, store. Only `inline`: GCC compiles it as a
 // function of its own, which laneStep calls. Forced into laneStep (always_inline), the same code came out with
-// a fifth more instructions in rk4's step (1 712 against 1 510 per general step, callgrind) and 20 ns slower,
-// from GCC's register allocation.
+// more instructions and slower, from GCC's register allocation (docs/performance_log.md#lone-step-inlining).
 template <IntegratorType kType>
 inline bool laneStepOf(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h,
                        State& state) {
@@ -798,9 +797,9 @@ inline bool laneStepOf(const Model& model, const StepTerms& terms, const Applied
   LaneState<double> next;
   if constexpr (kType == IntegratorType::kRk4 || kType == IntegratorType::kSemiImplicitEuler) {
     // The general terms as constants, a copy of the step of its own: GCC then allocates the registers of RK4's
-    // four stages (~50 live values) for the general body alone, free of the terms' branches (general rk4
-    // 121 -> 111 ns), and of semi-implicit Euler's ~60 body constants (general step -4 %). Explicit Euler
-    // loses by it (34 -> 50 ns): it takes the terms as they come.
+    // four stages (~50 live values) for the general body alone, free of the terms' branches, and of
+    // semi-implicit Euler's ~60 body constants. Explicit Euler loses by it: it takes the terms as they come
+    // (docs/performance_log.md#constant-terms).
     next = terms == kAllTerms ? laneStep(kType, b, kAllTerms, h, y) : laneStep(kType, b, terms, h, y);
   } else {
     next = laneStep(kType, b, terms, h, y);
@@ -813,7 +812,7 @@ inline bool laneStepOf(const Model& model, const StepTerms& terms, const Applied
 
 /// One body's step by its lane kernel, T = double: what Integrator::step runs for these methods (one
 /// instantiation per method, each a function of its own: inlined into one caller, each method's code moved
-/// with edits to the others' (perf: ±15 % on a lone step from an edit elsewhere). The result goes into
+/// with edits to the others' (docs/performance_log.md#one-function-per-method). The result goes into
 /// `state` only if acceptableLanes accepts it; returns whether it did.
 template <IntegratorType kType>
 __attribute__((noinline)) bool laneStep(const Model& model, const StepTerms& terms, const AppliedWrench& input,
@@ -827,11 +826,11 @@ __attribute__((noinline)) bool laneStep(const Model& model, const StepTerms& ter
 /// picked at run time by Integrator where wideLoneStepsAvailable(): the same scalar IEEE operations in the same
 /// order, so the same bits, in three-operand instructions with 32 registers instead of SSE2's two-operand
 /// ones with 16: fewer copies and spills of RK4's ~50 live values; used for all three methods (explicit
-/// Euler's step, once measured slower so, is 12-20 % faster, docs/performance.md). Without GCC's straight-line
+/// Euler's too: docs/performance_log.md#wide-lone-steps). Without GCC's straight-line
 /// vectoriser:
 /// "avx512f" brings fused multiply-add instructions, and GCC 12's vectoriser fuses a product into a pair of a
 /// sum and a difference (vfmaddsub) in spite of -ffp-contract=off (it did so in the native build), which
-/// would round apart from the batched step; without it the wide rk4 step also measured ~3 ns faster.
+/// would round apart from the batched step (and the wide rk4 step is faster without it).
 #define RIGID_BODY_LONE_WIDE_TARGET target("avx512f"), optimize("no-tree-slp-vectorize")
 template <IntegratorType kType>
 __attribute__((noinline, flatten, RIGID_BODY_LONE_WIDE_TARGET)) bool laneStepWide(const Model& model, const StepTerms& terms,
@@ -841,9 +840,8 @@ __attribute__((noinline, flatten, RIGID_BODY_LONE_WIDE_TARGET)) bool laneStepWid
 }
 #endif
 /// runLanes in the build's own instruction set, each method (and lane type) a function of its own: inlined
-/// together into one, each method's register allocation followed the others' code (an edit to the lone rk4
-/// step moved the batched semi-implicit Euler step by 10-15 %; rk4's batches ran 15-30 % faster apart,
-/// docs/performance.md). runBatch and runLone (wide_lanes.cpp) call it. Here rather than there, so that
+/// together into one, each method's register allocation followed the others' code
+/// (docs/performance_log.md#one-function-per-method). runBatch and runLone (wide_lanes.cpp) call it. Here rather than there, so that
 /// semi-implicit Euler's lone loop is compiled in lone_semi_implicit_euler.cpp, as its lone step is.
 template <IntegratorType kType, class T>
 __attribute__((noinline)) void runLanesOf(const LaneBody<T>& b, const StepTerms& terms, double h, std::int64_t steps,

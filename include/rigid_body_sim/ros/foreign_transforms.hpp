@@ -1,7 +1,7 @@
 // The tf tree as the other nodes publish it: /tf and /tf_static into a tf2 buffer, like tf2_ros's
 // TransformListener, except the node's own /tf messages. The node publishes every body's pose on /tf at the
 // output rate; taking them back in would insert each of them into the buffer again (for 10 000 bodies a
-// million insertions a second, measured as a fifth of the node's time), only to read back a pose the World
+// million insertions a second, docs/performance_log.md#own-transforms), only to read back a pose the World
 // holds exactly. Lookups through a body of this node use the World's pose instead (WrenchInput).
 #pragma once
 
