@@ -1,7 +1,7 @@
 // What a lone step's time is made of (Google Benchmark; not a test, run by hand, docs/performance.md):
 //   - latency/*: this core's latency of a dependent double addition, multiplication, division and square
 //     root (64 dependent operations per iteration; the counter ns_per_op);
-//   - kernel/*: the lane kernel of src/integrators/lane_steps.hpp on one general body (the scene of
+//   - kernel/*: the lane kernel of src/integrators/lane_dispatch.hpp on one general body (the scene of
 //     integrators_benchmark's general case), 100 steps per iteration (the counter ns_per_step), without the
 //     State it is loaded from and stored to and without the acceptability test: what Integrator::step costs
 //     beyond it is the call around it.
@@ -10,7 +10,7 @@
 #include <cmath>
 
 #include "general_body.hpp"
-#include "integrators/lane_steps.hpp"
+#include "integrators/lane_dispatch.hpp"
 #include "rigid_body_sim/kinematics.hpp"
 #include "rigid_body_sim/step_terms.hpp"
 
@@ -69,7 +69,7 @@ void kernel(benchmark::State& bench) {
   GeneralBody body(kType);
   constexpr int kSteps = 100;  // the state stays in registers between these steps, as in a batch's loop
   for (auto _ : bench) {
-    for (int i = 0; i < kSteps; ++i) body.y = laneStep(kType, body.b, body.terms, 0.001, body.y);
+    for (int i = 0; i < kSteps; ++i) body.y = laneKernelStep(kType, body.b, body.terms, 0.001, body.y);
     benchmark::DoNotOptimize(body.y);
   }
   bench.counters["ns_per_step"] = benchmark::Counter(static_cast<double>(bench.iterations()) * kSteps,

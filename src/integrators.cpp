@@ -5,8 +5,10 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "integrators/lane_steps.hpp"
+#include "integrators/lane_dispatch.hpp"
 #include "integrators/methods.hpp"
+#include "integrators/reference_steps.hpp"
+#include "registry_row.hpp"
 #include "integrators/runge_kutta.hpp"
 
 namespace rigid_body {
@@ -14,12 +16,15 @@ namespace rigid_body {
 using namespace integrators;
 
 const std::vector<IntegratorInfo>& integratorRegistry() {
-  // In the enumeration's order. type, name, order, f evaluations a step, adaptive, exact damping, constant-force weight, lane kernel, summary
+  // In the enumeration's order. type, name, order, f evaluations a step, adaptive, exact damping,
+  // constant-force weight, lane kernel, summary, the lane kernel's scalar reference
   static const std::vector<IntegratorInfo> registry = {
-      {IntegratorType::kExplicitEuler, "explicit_euler", 1, 1, false, false, 0.0, true, "Y += h f(Y), q normalised"},
+      {IntegratorType::kExplicitEuler, "explicit_euler", 1, 1, false, false, 0.0, true, "Y += h f(Y), q normalised",
+       explicitEulerReference},
       {IntegratorType::kSemiImplicitEuler, "semi_implicit_euler", 1, 1, false, false, 1.0, true,
-       "momenta first, then x and q = exp(w h) q"},
-      {IntegratorType::kRk4, "rk4", 4, 4, false, false, 0.5, true, "classic Runge-Kutta on Y, q normalised"},
+       "momenta first, then x and q = exp(w h) q", semiImplicitEulerReference},
+      {IntegratorType::kRk4, "rk4", 4, 4, false, false, 0.5, true, "classic Runge-Kutta on Y, q normalised",
+       rk4Reference},
       {IntegratorType::kRkmk4, "rkmk4", 4, 4, false, false, 0.5, false,
        "Runge-Kutta-Munthe-Kaas: RK4 with q on the rotation group"},
       {IntegratorType::kBuss, "buss", 2, 1, false, false, 0.5, false, "Buss's augmented second-order rotation update"},
@@ -33,17 +38,8 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
   return registry;
 }
 
-// The rows are in the enumeration's order, so a row is found by its index (every step asks for one).
 const IntegratorInfo& integratorInfo(IntegratorType type) {
-  static const bool in_order = [] {
-    for (std::size_t i = 0; i < integratorRegistry().size(); ++i) {
-      if (static_cast<std::size_t>(integratorRegistry()[i].type) != i) return false;
-    }
-    return true;
-  }();
-  const std::size_t index = static_cast<std::size_t>(type);
-  if (!in_order || index >= integratorRegistry().size()) throw std::logic_error("integrator registry out of order");
-  return integratorRegistry()[index];
+  return registryRow(integratorRegistry(), type, "integrator");
 }
 
 const std::vector<IntegratorType>& allIntegrators() {
@@ -82,15 +78,15 @@ bool Integrator::acceptable(const State& next) {
 }
 
 namespace {
-// A lone body's step by its lane kernel: with `wide`, compiled for AVX-512 (laneStepWide, the same bits).
+// A lone body's step by its lane kernel: with `wide`, compiled for AVX-512 (stepOneBodyAvx512, the same bits).
 template <IntegratorType kType>
 StepStatus loneStep(bool wide, const Model& model, const StepTerms& terms, const AppliedWrench& input, double h,
                     State& state) {
 #ifdef RIGID_BODY_WIDE_LONE_STEPS
-  if (wide) return laneStepWide<kType>(model, terms, input, h, state) ? StepStatus::kOk : StepStatus::kNonFinite;
+  if (wide) return stepOneBodyAvx512<kType>(model, terms, input, h, state) ? StepStatus::kOk : StepStatus::kNonFinite;
 #endif
   (void)wide;
-  return laneStep<kType>(model, terms, input, h, state) ? StepStatus::kOk : StepStatus::kNonFinite;
+  return stepOneBody<kType>(model, terms, input, h, state) ? StepStatus::kOk : StepStatus::kNonFinite;
 }
 }  // namespace
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "contact/contact_step.hpp"
-#include "integrators/lane_steps.hpp"
+#include "integrators/batch_stepper.hpp"
 #include "rigid_body_sim/kinematics.hpp"
 
 namespace rigid_body {
@@ -32,7 +32,7 @@ Scene::Scene(const std::vector<BodyDefinition>& bodies, IntegratorType integrato
       settings_(settings),
       assembly_(assembly),
       dt_(dt),
-      wide_lanes_(integrators::wideLanesAvailable()) {
+      wide_lanes_(integrators::BatchStepper::wideInstructionsAvailable()) {
   if (!std::isfinite(dt) || dt <= 0.0) throw std::invalid_argument("dt must be a finite number > 0 [s]");
   if (bodies.empty()) throw std::invalid_argument("a scene needs at least one body");
   for (const BodyDefinition& body : bodies) {
@@ -63,6 +63,7 @@ Scene::Scene(const std::vector<BodyDefinition>& bodies, IntegratorType integrato
   inputs_.assign(bodies.size(), AppliedWrench());
   integrators_.assign(bodies.size(), Integrator(integrator, settings));
   pool_ = std::make_unique<ThreadPool>(1);
+  if (integrators::BatchStepper::handles(integrator)) batches_ = std::make_unique<integrators::BatchStepper>(integrator);
 }
 
 void Scene::setThreads(std::size_t threads, std::size_t bodies_per_block) {
@@ -72,7 +73,8 @@ void Scene::setThreads(std::size_t threads, std::size_t bodies_per_block) {
 }
 
 bool Scene::setWideLanes(bool on) {
-  wide_lanes_ = on && integrators::wideLanesAvailable();
+  wide_lanes_ = on && integrators::BatchStepper::wideInstructionsAvailable();
+  if (batches_) batches_->setWideInstructions(wide_lanes_);
   return wide_lanes_;
 }
 
@@ -81,7 +83,7 @@ Scene::Scene(Scene&&) noexcept = default;
 Scene& Scene::operator=(Scene&&) noexcept = default;
 
 void Scene::assemble(std::size_t body) {
-  lane_order_stale_ = true;
+  if (batches_) batches_->markKindsStale();
   if (assembly_ == StepAssembly::kGeneral) {
     terms_[body] = StepTerms::all();
     return;
@@ -134,7 +136,7 @@ SceneStepResult Scene::step(std::int64_t steps) {
   const std::size_t bodies = states_.size();
   const std::size_t per_block = bodies_per_block_;
   const std::size_t blocks = (bodies + per_block - 1) / per_block;
-  if (integrators::hasLaneStep(integrator_type_) && lane_order_stale_) orderBodiesByKind();
+  if (batches_) batches_->prepare(models_, terms_);
   if (pool_->threads() > 1 && blocks > 1) {
     // Every block reports into its own slot; merged in block order, the result is the one-thread result.
     block_results_.assign(blocks, SceneStepResult());
@@ -150,8 +152,8 @@ SceneStepResult Scene::step(std::int64_t steps) {
 }
 
 void Scene::stepBodies(std::size_t begin, std::size_t end, std::int64_t steps, SceneStepResult& result) {
-  if (integrators::hasLaneStep(integrator_type_)) {
-    stepBodiesInLanes(begin, end, steps, result);
+  if (batches_) {
+    stepBodiesInBatches(begin, end, steps, result);
     return;
   }
   for (std::size_t body = begin; body < end; ++body) {
@@ -173,89 +175,16 @@ void Scene::mergeBody(std::size_t body, std::int64_t done, StepStatus status, Sc
   merge({done, status, records_[body].divergence != Divergence::kNone}, result);
 }
 
-void Scene::orderBodiesByKind() {
-  // A body's kind: its step terms and, under semi-implicit Euler, its rotation's branch. The key orders
-  // only; stepBodiesInLanes compares the terms themselves, so a key that missed a term would cost batches,
-  // never mix kinds in one.
-  std::vector<unsigned> key(states_.size());
-  for (std::size_t body = 0; body < key.size(); ++body) {
-    const StepTerms& t = terms_[body];
-    unsigned k = static_cast<unsigned>(integrators::semiImplicitTurnKind(integrator_type_, models_[body].mass));
-    for (const bool term : {t.input, t.gravity, t.linear_damping, t.angular_damping, t.rotation, t.world_inertia}) {
-      k = 2 * k + (term ? 1 : 0);
-    }
-    key[body] = k;
-  }
-  lane_order_.resize(states_.size());
-  for (std::size_t i = 0; i < lane_order_.size(); ++i) lane_order_[i] = i;
-  std::stable_sort(lane_order_.begin(), lane_order_.end(), [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
-  lane_order_stale_ = false;
-}
-
-void Scene::stepBodiesInLanes(std::size_t begin, std::size_t end, std::int64_t steps, SceneStepResult& result) {
-  // Bodies go into batches of kLanes by kind (a batch takes one branch of the step for all its lanes), in
-  // lane_order_, where the bodies of a kind are neighbours: each kind fills its batches, within a thread's
-  // block too, whatever the order of the body list. (Taken in list order, the six interleaved kinds of a
-  // swarm under semi-implicit Euler left most batches with one body, and blocks of 64 several part-filled
-  // ones each: docs/performance.md.) Which bodies share a batch changes nothing in any body's arithmetic.
-  struct Batch {
-    StepTerms terms;
-    integrators::SemiImplicitTurn turn_kind{};  // semi-implicit Euler's rotation branch
-    std::array<std::size_t, integrators::kLanes> bodies;
-    std::size_t count = 0;
-  } batch;
-  const auto run = [&] {
-    if (batch.count == 1) {
-      stepLanes<double>(batch.bodies.data(), 1, steps, result);
-    } else if (batch.count > 1) {
-      stepLanes<integrators::Lanes>(batch.bodies.data(), batch.count, steps, result);
-    }
-    batch.count = 0;
-  };
-  for (std::size_t i = begin; i < end; ++i) {
-    const std::size_t body = lane_order_[i];
-    if (records_[body].divergence != Divergence::kNone || collides(body)) continue;
-    const integrators::SemiImplicitTurn turn_kind = integrators::semiImplicitTurnKind(integrator_type_, models_[body].mass);
-    if (batch.count > 0 && (batch.terms != terms_[body] || batch.turn_kind != turn_kind)) run();
-    if (batch.count == 0) {
-      batch.terms = terms_[body];
-      batch.turn_kind = turn_kind;
-    }
-    batch.bodies[batch.count++] = body;
-    if (batch.count == integrators::kLanes) run();
-  }
-  run();
-}
-
-template <class T>
-void Scene::stepLanes(const std::size_t* bodies, std::size_t count, std::int64_t steps, SceneStepResult& result) {
-  using namespace integrators;
-  constexpr std::size_t lanes = kLaneCount<T>;
-  LaneBody<T> constants;
-  LaneState<T> y;
-  const StepTerms& terms = terms_[bodies[0]];
-  for (std::size_t i = 0; i < lanes; ++i) {  // unused lanes repeat the last body; their results are dropped
-    const std::size_t body = bodies[std::min(i, count - 1)];
-    loadBody(constants, i, integrator_type_, terms, models_[body], inputs_[body]);
-    loadState(y, i, states_[body]);
-  }
-  for (std::size_t i = count; i < lanes; ++i) constants.mass[i] = nullptr;
-  std::array<std::int64_t, kLanes> done;
-  std::array<bool, kLanes> running;
-  if constexpr (kLaneCount<T> == 1) {
-    runLone(wide_lanes_, integrator_type_, constants, terms, dt_, steps, y, done.data(), running.data());
-  } else {
-    runBatch(wide_lanes_, integrator_type_, constants, terms, dt_, steps, count, y, done.data(), running.data());
-  }
-  for (std::size_t i = 0; i < count; ++i) {
-    const std::size_t body = bodies[i];
-    const State before = states_[body];
-    storeState(y, i, states_[body]);
-    integrators_[body].countSteps(static_cast<std::uint64_t>(done[i]));
-    const StepStatus status = running[i] ? StepStatus::kOk : StepStatus::kNonFinite;
-    finishBody(body, before, done[i], status);
-    mergeBody(body, done[i], status, result);
-  }
+void Scene::stepBodiesInBatches(std::size_t begin, std::size_t end, std::int64_t steps, SceneStepResult& result) {
+  const integrators::BatchStepper::Bodies bodies{models_, terms_, inputs_, states_};
+  batches_->step(
+      bodies, begin, end, dt_, steps,
+      [&](std::size_t body) { return records_[body].divergence == Divergence::kNone && !collides(body); },
+      [&](std::size_t body, const State& before, std::int64_t done, StepStatus status) {
+        integrators_[body].countSteps(static_cast<std::uint64_t>(done));
+        finishBody(body, before, done, status);
+        mergeBody(body, done, status, result);
+      });
 }
 
 void Scene::stepColliders(std::int64_t steps, SceneStepResult& result) {

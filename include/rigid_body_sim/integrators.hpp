@@ -31,6 +31,10 @@ enum class IntegratorType {
 
 /// One row of the registry: everything the node, the report, the contact step and the documentation ask of
 /// a method, so that none of them tests a method by name.
+/// A method's step written plainly (Eigen, the equations as they read): Y_{n+1} from Y_n.
+using ReferenceStep = State (*)(const Model& model, const StepTerms& terms, const AppliedWrench& input, double h,
+                                const State& y);
+
 struct IntegratorInfo {
   IntegratorType type;
   std::string name;  ///< the parameter value, e.g. "rk4"
@@ -47,9 +51,13 @@ struct IntegratorInfo {
   /// with the old velocity (0), semi-implicit Euler with the new one (1). The contact step uses it to undo a
   /// resting body's fall exactly (docs/contact.md).
   double constant_force_weight;
-  /// Steps bodies several at a time in vector lanes (src/integrators/lane_steps.hpp, docs/architecture.md).
+  /// Steps by a lane kernel: one body, or four at a time in vector lanes (src/integrators/lane_dispatch.hpp,
+  /// docs/architecture.md).
   bool lane_kernel;
   const char* summary;  ///< one line for tables and logs
+  /// With a lane kernel: the plain scalar version of the method, which the kernel is tested against
+  /// (src/integrators/reference_steps.hpp). Null for a method whose step is already written plainly.
+  ReferenceStep reference_step = nullptr;
 };
 
 /// The registry, in the order of the documentation.

@@ -21,6 +21,9 @@ namespace rigid_body {
 namespace contact {
 class ContactStep;
 }
+namespace integrators {
+class BatchStepper;
+}
 
 /// Why a body stopped integrating; kNone while it runs.
 enum class Divergence {
@@ -159,14 +162,9 @@ class Scene {
 
   // The independent bodies in [begin, end), each `steps` steps, their outcome merged into `result`.
   void stepBodies(std::size_t begin, std::size_t end, std::int64_t steps, SceneStepResult& result);
-  // explicit_euler, semi_implicit_euler, rk4: the bodies at positions [begin, end) of lane_order_, those of a
-  // kind four at a time (lane_steps.hpp).
-  void stepBodiesInLanes(std::size_t begin, std::size_t end, std::int64_t steps, SceneStepResult& result);
-  // lane_order_ from the bodies' kinds, stable (index order within a kind).
-  void orderBodiesByKind();
-  // `count` ≤ 4 bodies with the same terms, `steps` steps each, one per lane of T (double: one body).
-  template <class T>
-  void stepLanes(const std::size_t* bodies, std::size_t count, std::int64_t steps, SceneStepResult& result);
+  // explicit_euler, semi_implicit_euler, rk4: the bodies at positions [begin, end) of the batches' kind
+  // order, those of a kind four at a time (src/integrators/batch_stepper.hpp).
+  void stepBodiesInBatches(std::size_t begin, std::size_t end, std::int64_t steps, SceneStepResult& result);
   // A part's outcome (a block's, a body's) into a step's result: the most steps, the first failure, any divergence.
   static void merge(const SceneStepResult& part, SceneStepResult& result);
   // A body's outcome into a step's result.
@@ -198,11 +196,8 @@ class Scene {
   std::vector<StepStatus> collider_failed_;         // per collider, reused
   std::unique_ptr<ThreadPool> pool_;                // steps the independent bodies in blocks
   std::vector<SceneStepResult> block_results_;      // one per block of the last threaded step, reused
-  // The order in which the lane methods take the bodies: by kind (step terms, semi-implicit Euler's rotation
-  // branch), so that a kind's bodies are neighbours and fill batches; rebuilt before a step after any body's
-  // terms were assembled again (construction, reset, setState, setForceModel).
-  std::vector<std::size_t> lane_order_;
-  bool lane_order_stale_ = true;
+  // The independent bodies' batches, under a method with a lane kernel (null under the others).
+  std::unique_ptr<integrators::BatchStepper> batches_;
   std::size_t bodies_per_block_ = kBodiesPerBlock;
   bool wide_lanes_;
 };

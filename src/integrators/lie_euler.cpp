@@ -1,5 +1,5 @@
 // Buss's second-order method, a single-stage method that moves q on the rotation group. (Semi-implicit Euler,
-// the other one, is in lane_steps.hpp: one body or four at once.)
+// the other one, is a lane kernel: lane_semi_implicit_euler.hpp, one body or four at once.)
 #include "methods.hpp"
 #include "runge_kutta.hpp"
 

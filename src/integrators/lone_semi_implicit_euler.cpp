@@ -3,22 +3,22 @@
 // compiles without GCC's straight-line (SLP) vectoriser: its pairing of the Cayley turns' scalar arithmetic
 // into two-lane operations cost the lone step more in shuffles than it saved (see docs/performance.md). The
 // batched kernels and the other methods' lone steps keep it.
-#include "lane_steps.hpp"
+#include "lane_dispatch.hpp"
 
 namespace rigid_body {
 namespace integrators {
 
-template bool laneStep<IntegratorType::kSemiImplicitEuler>(const Model& model, const StepTerms& terms,
+template bool stepOneBody<IntegratorType::kSemiImplicitEuler>(const Model& model, const StepTerms& terms,
                                                             const AppliedWrench& input, double h, State& state);
-template void runLanesOf<IntegratorType::kSemiImplicitEuler, double>(const LaneBody<double>& b,
+template void stepLanesOf<IntegratorType::kSemiImplicitEuler, double>(const LaneBody<double>& b,
                                                                      const StepTerms& terms, double h,
                                                                      std::int64_t steps, std::size_t count,
                                                                      LaneState<double>& y, std::int64_t* done,
                                                                      bool* running);
 #ifdef RIGID_BODY_WIDE_LONE_STEPS
-template bool laneStepWide<IntegratorType::kSemiImplicitEuler>(const Model& model, const StepTerms& terms,
+template bool stepOneBodyAvx512<IntegratorType::kSemiImplicitEuler>(const Model& model, const StepTerms& terms,
                                                                 const AppliedWrench& input, double h, State& state);
-template void runLoneWide<IntegratorType::kSemiImplicitEuler>(const LaneBody<double>& b, const StepTerms& terms,
+template void stepLoneAvx512<IntegratorType::kSemiImplicitEuler>(const LaneBody<double>& b, const StepTerms& terms,
                                                               double h, std::int64_t steps, LaneState<double>& y,
                                                               std::int64_t* done, bool* running);
 #endif

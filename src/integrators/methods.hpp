@@ -1,6 +1,6 @@
 // The one-step maps of the methods that are not a plain Runge–Kutta tableau, one family per source file:
 // lie_euler.cpp (Buss) and splitting.cpp (symplectic splitting, implicit midpoint); semi-implicit Euler is
-// in lane_steps.hpp with explicit Euler and rk4 (one body or four at once).
+// a lane kernel with explicit Euler and rk4 (lane_dispatch.hpp: one body or four at once).
 // dopri5 lives in dopri5.cpp, as Integrator's member (it keeps memory between calls).
 // Internal to the integrators (not installed).
 #pragma once

@@ -1,5 +1,6 @@
 // The explicit Runge–Kutta driver and its tableaux, shared by rkmk4 and dopri5 (explicit_euler and rk4 have
-// their own arrangement of the same steps, for one body or four at once: lane_steps.hpp).
+// their own arrangement of the same steps, for one body or four at once: lane_runge_kutta.hpp; the plain
+// versions through this driver are reference_steps.cpp).
 // Internal to the integrators (not installed).
 #pragma once
 

@@ -3,51 +3,49 @@
 // steps in AVX-512's scalar instructions on a CPU with those. Only this file's loops are compiled so, with
 // every piece of the step inlined into them; nothing of Eigen crosses into them (a whole translation unit
 // built with -mavx would change Eigen's alignment and disagree with the rest).
-#include "lane_steps.hpp"
+#include "lane_dispatch.hpp"
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace rigid_body {
 namespace integrators {
 
 namespace {
 
-// Each method's loop a function of its own, as runLanesOf (lane_steps.hpp) says why.
+// Each method's loop a function of its own, as stepLanesOf (lane_dispatch.hpp) says why.
 #if defined(__x86_64__) && !defined(__AVX__)
 #define RIGID_BODY_WIDE_LANES 1
 template <IntegratorType kType>
-__attribute__((noinline, target("avx"))) void runBatchAvx(const LaneBody<Lanes>& b, const StepTerms& terms, double h,
+__attribute__((noinline, target("avx"))) void stepBatchAvx(const LaneBody<Lanes>& b, const StepTerms& terms, double h,
                                                           std::int64_t steps, std::size_t count, LaneState<Lanes>& y,
                                                           std::int64_t* done, bool* running) {
-  runLanes(kType, b, terms, h, steps, count, y, done, running);
+  stepLanesUntilRefused(kType, b, terms, h, steps, count, y, done, running);
 }
 #endif
 
 template <IntegratorType kType>
-void runBatchOf(bool wide, const LaneBody<Lanes>& b, const StepTerms& terms, double h, std::int64_t steps,
+void stepBatchOf(bool wide, const LaneBody<Lanes>& b, const StepTerms& terms, double h, std::int64_t steps,
                 std::size_t count, LaneState<Lanes>& y, std::int64_t* done, bool* running) {
 #ifdef RIGID_BODY_WIDE_LANES
   if (wide) {
-    runBatchAvx<kType>(b, terms, h, steps, count, y, done, running);
+    stepBatchAvx<kType>(b, terms, h, steps, count, y, done, running);
     return;
   }
 #endif
   (void)wide;
-  runLanesOf<kType>(b, terms, h, steps, count, y, done, running);  // the build's own instruction set
+  stepLanesOf<kType>(b, terms, h, steps, count, y, done, running);  // the build's own instruction set
 }
 
 template <IntegratorType kType>
-void runLoneOf(bool wide, const LaneBody<double>& b, const StepTerms& terms, double h, std::int64_t steps,
+void stepLoneOf(bool wide, const LaneBody<double>& b, const StepTerms& terms, double h, std::int64_t steps,
                LaneState<double>& y, std::int64_t* done, bool* running) {
 #ifdef RIGID_BODY_WIDE_LONE_STEPS
   if (wide && wideLoneStepsAvailable()) {
-    runLoneWide<kType>(b, terms, h, steps, y, done, running);
+    stepLoneAvx512<kType>(b, terms, h, steps, y, done, running);
     return;
   }
 #endif
   (void)wide;
-  runLanesOf<kType>(b, terms, h, steps, 1, y, done, running);
+  stepLanesOf<kType>(b, terms, h, steps, 1, y, done, running);
 }
 
 }  // namespace
@@ -70,19 +68,17 @@ bool wideLoneStepsAvailable() {
 #endif
 }
 
-void runBatch(bool wide, IntegratorType type, const LaneBody<Lanes>& b, const StepTerms& terms, double h,
+void stepBatch(bool wide, IntegratorType type, const LaneBody<Lanes>& b, const StepTerms& terms, double h,
               std::int64_t steps, std::size_t count, LaneState<Lanes>& y, std::int64_t* done, bool* running) {
   withMethod(type, [&](auto method) {
-    runBatchOf<decltype(method)::value>(wide, b, terms, h, steps, count, y, done, running);
+    stepBatchOf<decltype(method)::value>(wide, b, terms, h, steps, count, y, done, running);
   });
 }
 
-void runLone(bool wide, IntegratorType type, const LaneBody<double>& b, const StepTerms& terms, double h,
+void stepLone(bool wide, IntegratorType type, const LaneBody<double>& b, const StepTerms& terms, double h,
              std::int64_t steps, LaneState<double>& y, std::int64_t* done, bool* running) {
-  withMethod(type, [&](auto method) { runLoneOf<decltype(method)::value>(wide, b, terms, h, steps, y, done, running); });
+  withMethod(type, [&](auto method) { stepLoneOf<decltype(method)::value>(wide, b, terms, h, steps, y, done, running); });
 }
 
 }  // namespace integrators
 }  // namespace rigid_body
-
-#pragma GCC diagnostic pop
