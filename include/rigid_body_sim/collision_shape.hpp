@@ -20,6 +20,7 @@ enum class ShapeType {
   kMesh,      ///< a triangle mesh: its convex hull on a body, the triangles themselves in the environment
 };
 
+/// Its spelling in parameter files (shape_registry.hpp has the rest of its row).
 const char* shapeTypeName(ShapeType type);
 
 /// Newton's coefficient of restitution e ∈ [0, 1] and Coulomb's friction coefficient μ ≥ 0. A contact

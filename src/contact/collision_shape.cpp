@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "rigid_body_sim/shape_registry.hpp"
 
 namespace rigid_body {
 
@@ -17,23 +18,7 @@ constexpr double kSmallest = 1e-6;
 
 }  // namespace
 
-const char* shapeTypeName(ShapeType type) {
-  switch (type) {
-    case ShapeType::kPlane:
-      return "plane";
-    case ShapeType::kBox:
-      return "box";
-    case ShapeType::kSphere:
-      return "sphere";
-    case ShapeType::kCylinder:
-      return "cylinder";
-    case ShapeType::kCapsule:
-      return "capsule";
-    case ShapeType::kMesh:
-      return "mesh";
-  }
-  return "unknown";
-}
+const char* shapeTypeName(ShapeType type) { return shapeInfo(type).name; }
 
 double innerRadius(const CollisionShape& shape) {
   const Eigen::Vector3d& s = shape.size;
@@ -110,12 +95,10 @@ void validateShape(const CollisionShape& shape, bool in_environment) {
       }
       return;
     case ShapeType::kBox:
-      return positive(3);
     case ShapeType::kSphere:
-      return positive(1);
     case ShapeType::kCylinder:
     case ShapeType::kCapsule:
-      return positive(2);
+      return positive(shapeInfo(shape.type).size_count);
     case ShapeType::kMesh: {
       if (shape.mesh.vertices.size() < 4 || shape.mesh.triangles.size() < 4) {
         throw std::invalid_argument(what + ": a collision mesh needs at least 4 vertices and 4 triangles");

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "rigid_body_sim/kinematics.hpp"
+#include "rigid_body_sim/shape_registry.hpp"
 
 namespace rigid_body {
 namespace contact {
@@ -27,10 +28,6 @@ constexpr double kStickingSlip = 0.1;
 constexpr double kStartingFriction = 0.5;
 
 // Whether a shape can roll: its contact point then moves over its surface (sphere, cylinder, capsule).
-bool isCurved(ShapeType type) {
-  return type == ShapeType::kSphere || type == ShapeType::kCylinder || type == ShapeType::kCapsule;
-}
-
 void rotate(Eigen::Quaterniond& q, const Eigen::Vector3d& rotation_W) {
   const double angle = rotation_W.norm();
   if (angle == 0.0) return;
@@ -53,14 +50,14 @@ ContactStep::ContactStep(const ContactSetup& setup, const std::vector<std::size_
     poses.push_back(X_WB);
     shapes.push_back(*setup.bodies[body]);
     materials_.push_back(shapes.back().material);
-    curved_.push_back(isCurved(shapes.back().type));
+    curved_.push_back(shapeInfo(shapes.back().type).curved);
     names_.push_back(shapes.back().name.empty() ? "body " + std::to_string(body) : shapes.back().name);
     inner_radius_.push_back(innerRadius(shapes.back()));
     outer_radius_.push_back(outerRadius(shapes.back()));
   }
   for (std::size_t i = 0; i < setup.environment.size(); ++i) {
     materials_.push_back(setup.environment[i].material);
-    curved_.push_back(isCurved(setup.environment[i].type));
+    curved_.push_back(shapeInfo(setup.environment[i].type).curved);
     names_.push_back(setup.environment[i].name.empty() ? "environment shape " + std::to_string(i)
                                                        : setup.environment[i].name);
   }

@@ -3,9 +3,11 @@
 #include "parameter_values.hpp"
 
 #include <cmath>
+#include <optional>
 #include <set>
 
 #include "rigid_body_sim/mesh_io.hpp"
+#include "rigid_body_sim/shape_registry.hpp"
 #include "rigid_body_sim/ros/parameters.hpp"
 
 namespace rigid_body_ros {
@@ -51,26 +53,25 @@ void readMaterial(const XmlRpcValue& params, const std::string& prefix, rigid_bo
 
 rigid_body::ShapeType shapeType(const XmlRpcValue& params, const std::string& name, const std::string& fallback,
                                 bool plane_allowed) {
-  const std::string allowed = plane_allowed ? "must be one of: plane, box, sphere, cylinder, capsule, mesh"
-                                            : "must be one of: box, sphere, cylinder, capsule, mesh";
+  const std::string allowed =
+      "must be one of: " + (plane_allowed ? rigid_body::shapeNames([](const rigid_body::ShapeInfo&) { return true; })
+                                          : rigid_body::shapeNames([](const rigid_body::ShapeInfo& s) {
+                                              return !s.environment_only;
+                                            }));
   const std::string type = readString(params, name, fallback, allowed);
-  for (rigid_body::ShapeType t : {rigid_body::ShapeType::kPlane, rigid_body::ShapeType::kBox,
-                                  rigid_body::ShapeType::kSphere, rigid_body::ShapeType::kCylinder,
-                                  rigid_body::ShapeType::kCapsule, rigid_body::ShapeType::kMesh}) {
-    if (type == rigid_body::shapeTypeName(t) && (plane_allowed || t != rigid_body::ShapeType::kPlane)) return t;
+  const std::optional<rigid_body::ShapeType> shape = rigid_body::shapeFromName(type);
+  if (!shape || (!plane_allowed && rigid_body::shapeInfo(*shape).environment_only)) {
+    failAt(params, name, XmlRpcValue(type), allowed);
   }
-  failAt(params, name, XmlRpcValue(type), allowed);
+  return *shape;
 }
 
-// size for a shape type: box [x, y, z], sphere [r], cylinder and capsule [r, length].
+// size for a shape type: as many entries as its row says (box [x, y, z], sphere [r], cylinder and capsule
+// [r, length]).
 Eigen::Vector3d readSize(const XmlRpcValue& params, const std::string& name, rigid_body::ShapeType type,
                          const std::vector<double>& fallback) {
-  std::size_t length = 3;
-  std::string allowed = "for a box, must be [x, y, z] with 3 finite numbers > 0 [m]";
-  if (type == rigid_body::ShapeType::kSphere) length = 1, allowed = "for a sphere, must be [radius] > 0 [m]";
-  if (type == rigid_body::ShapeType::kCylinder || type == rigid_body::ShapeType::kCapsule) {
-    length = 2, allowed = "for a cylinder or capsule, must be [radius, length] with finite numbers > 0 [m]";
-  }
+  const std::size_t length = static_cast<std::size_t>(rigid_body::shapeInfo(type).size_count);
+  const std::string allowed = rigid_body::sizeRule(type);
   if (!find(params, name) && fallback.size() != length) {
     fail(name, XmlRpcValue(std::string()), "must be set: " + allowed);
   }
@@ -180,7 +181,7 @@ std::optional<rigid_body::CollisionShape> readCollision(const XmlRpcValue& param
   if (!own) refuseUnknown(*value, "collision/", kCollisionKeys);
   rigid_body::CollisionShape shape;
   shape.name = body.name.empty() ? body.body_frame : body.name;
-  if (body.shape == "urdf" && (own || !find(params, "collision/shape"))) {
+  if (body.mass_source == MassSource::kUrdf && (own || !find(params, "collision/shape"))) {
     // The link's own <collision>, posed in the body frame; a struct may still set the material.
     if (!body.urdf_collision && !body.urdf_collision_problem.empty()) {
       fail("link", XmlRpcValue(body.link), body.urdf_collision_problem);
@@ -192,7 +193,7 @@ std::optional<rigid_body::CollisionShape> readCollision(const XmlRpcValue& param
     if (!own) readMaterial(params, "collision/", shape.material);
     return shape;
   }
-  const std::string own_shape = body.shape == "inertia" || body.shape == "urdf" ? "" : body.shape;
+  const std::string own_shape = body.mass_source == MassSource::kShape ? rigid_body::shapeTypeName(body.shape) : "";
   if (own && own_shape.empty()) {
     fail("collision", *value, "needs a shape: a body given by ~inertia has none; give collision/shape and collision/size");
   }
@@ -201,7 +202,7 @@ std::optional<rigid_body::CollisionShape> readCollision(const XmlRpcValue& param
   if (!own && own_shape.empty() && !find(params, "collision/shape")) {
     fail("collision/shape", XmlRpcValue(std::string()), "must be set: a body given by ~inertia has no shape of its own");
   }
-  const bool same_shape = rigid_body::shapeTypeName(shape.type) == own_shape;
+  const bool same_shape = body.hasShape(shape.type);
   if (shape.type == rigid_body::ShapeType::kMesh) {
     if (!own && find(params, "collision/mesh")) {
       shape.mesh = readCollisionMesh(params, "collision/", rigid_body::kDefaultMaxMeshBytes);

@@ -64,9 +64,11 @@ bool primitive(rigid_body::ShapeType type, const Eigen::Vector3d& size, visualiz
       marker.type = visualization_msgs::Marker::CYLINDER;
       marker.scale.x = marker.scale.y = 2.0 * size.x(), marker.scale.z = size.y() + 2.0 * size.x();
       return true;
-    default:
+    case rigid_body::ShapeType::kPlane:
+    case rigid_body::ShapeType::kMesh:
       return false;
   }
+  return false;
 }
 
 }  // namespace
@@ -106,13 +108,13 @@ void Markers::addBodies() {
     marker.color = bodyColour(body);
     marker.pose.orientation.w = 1.0;
     marker.frame_locked = true;
-    if (b.shape == "mesh") {
+    if (b.hasShape(rigid_body::ShapeType::kMesh)) {
       // The mesh as its file has it: its own frame sits at X_BM in the body frame, scaled to metres.
       marker.type = visualization_msgs::Marker::MESH_RESOURCE;
       marker.mesh_resource = b.mesh_uri.rfind("package://", 0) == 0 ? b.mesh_uri : "file://" + b.mesh_path;
       marker.scale.x = marker.scale.y = marker.scale.z = b.mesh_scale;
       setPose(b.X_MB.inverse(), marker.pose);
-    } else if (b.shape == "urdf" && (b.visual || !b.visual_mesh.empty())) {
+    } else if (b.mass_source == MassSource::kUrdf && (b.visual || !b.visual_mesh.empty())) {
       // The link's <visual>, posed in the link frame, which is the published frame.
       if (b.visual) {
         primitive(b.visual->type, b.visual->size, marker);
@@ -123,7 +125,7 @@ void Markers::addBodies() {
         marker.scale.x = marker.scale.y = marker.scale.z = b.visual_mesh_scale;
         setPose(b.X_PV, marker.pose);
       }
-    } else if (b.shape == "inertia" || b.shape == "urdf") {
+    } else if (b.mass_source != MassSource::kShape) {
       // No shape to draw: the box with the same principal moments, at the centre of mass along the principal
       // axes (in the published frame: X_P,principal = X_BP⁻¹ X_B,principal).
       marker.type = visualization_msgs::Marker::CUBE;
@@ -133,12 +135,9 @@ void Markers::addBodies() {
       X_B_principal.linear() = b.model.mass.principalAxes();
       setPose(b.X_BP.inverse() * X_B_principal, marker.pose);
     } else {
-      const rigid_body::ShapeType type = b.shape == "box"      ? rigid_body::ShapeType::kBox
-                                         : b.shape == "sphere" ? rigid_body::ShapeType::kSphere
-                                                               : rigid_body::ShapeType::kCylinder;
       Eigen::Vector3d size = Eigen::Vector3d::Zero();
       for (std::size_t i = 0; i < b.size.size() && i < 3; ++i) size[static_cast<int>(i)] = b.size[i];
-      primitive(type, size, marker);
+      primitive(b.shape, size, marker);
     }
     array_.markers.push_back(marker);
   }

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -21,6 +22,7 @@
 #include "rigid_body_sim/number_format.hpp"
 #include "rigid_body_sim/ros/contact_parameters.hpp"
 #include "rigid_body_sim/ros/urdf_body.hpp"
+#include "rigid_body_sim/shape_registry.hpp"
 
 namespace rigid_body_ros {
 
@@ -153,7 +155,7 @@ rigid_body::MassProperties readUrdfMassProperties(const XmlRpcValue& params, Bod
     }
   }
   UrdfLink link = readUrdfLink(xml, config.link, max_bytes);
-  config.shape = "urdf";
+  config.mass_source = MassSource::kUrdf;
   config.size.clear();
   config.X_BP = link.X_LB.inverse();
   config.published_offset = !link.X_LB.isApprox(Eigen::Isometry3d::Identity(), 0.0);
@@ -169,12 +171,25 @@ rigid_body::MassProperties readUrdfMassProperties(const XmlRpcValue& params, Bod
   return link.mass;
 }
 
+// A shape a body may take as its own: one with a solid's formula, or a mesh (its triangles give the rest).
+bool bodyShape(const rigid_body::ShapeInfo& info) {
+  return info.solid != nullptr || info.type == rigid_body::ShapeType::kMesh;
+}
+
 rigid_body::MassProperties readMassProperties(const XmlRpcValue& params, BodyConfig& config,
                                               const ParameterReader& reader) {
   if (find(params, "urdf") || find(params, "robot_description")) return readUrdfMassProperties(params, config, reader);
-  const std::string shape_allowed = "must be one of: box, sphere, cylinder, mesh (or give ~inertia)";
-  if (!find(params, "inertia") && readString(params, "shape", "box", shape_allowed) == "mesh") {
-    config.shape = "mesh";
+  const std::string shape_allowed =
+      "must be one of: " + rigid_body::shapeNames([](const rigid_body::ShapeInfo& s) { return bodyShape(s); }) +
+      " (or give ~inertia)";
+  const auto body_shape = [&] {
+    const std::string name = readString(params, "shape", "box", shape_allowed);
+    const std::optional<rigid_body::ShapeType> type = rigid_body::shapeFromName(name);
+    if (!type || !bodyShape(rigid_body::shapeInfo(*type))) failAt(params, "shape", XmlRpcValue(name), shape_allowed);
+    return *type;
+  };
+  if (!find(params, "inertia") && body_shape() == rigid_body::ShapeType::kMesh) {
+    config.shape = rigid_body::ShapeType::kMesh;
     return readMeshMassProperties(params, config);
   }
   const double mass = readNumber(params, "mass", 1.0, [](double m) { return m > 0.0; }, "must be a finite number > 0 [kg]");
@@ -185,7 +200,7 @@ rigid_body::MassProperties readMassProperties(const XmlRpcValue& params, BodyCon
     I << i[0], i[3], i[4],  //
         i[3], i[1], i[5],   //
         i[4], i[5], i[2];
-    config.shape = "inertia";
+    config.mass_source = MassSource::kInertia;
     config.size.clear();
     try {
       return rigid_body::MassProperties::fromInertia(mass, I);
@@ -194,21 +209,11 @@ rigid_body::MassProperties readMassProperties(const XmlRpcValue& params, BodyCon
              std::string(error.what()) + " (a symmetric positive-definite tensor about the centre of mass)");
     }
   }
-  config.shape = readString(params, "shape", "box", shape_allowed);
-  std::string size_allowed;
-  size_t length = 0;
-  std::vector<double> fallback;
-  if (config.shape == "box") {
-    length = 3, size_allowed = "for a box, must be [x, y, z] with 3 finite numbers > 0 [m]", fallback = {0.4, 0.2, 0.1};
-  } else if (config.shape == "sphere") {
-    length = 1, size_allowed = "for a sphere, must be [radius] with a finite number > 0 [m]", fallback = {0.1};
-  } else if (config.shape == "cylinder") {
-    length = 2, size_allowed = "for a cylinder, must be [radius, length] with finite numbers > 0 [m]",
-    fallback = {0.1, 0.4};
-  } else {
-    failAt(params, "shape", XmlRpcValue(), shape_allowed);
-  }
-  config.size = readNumbers(params, "size", fallback, length, size_allowed);
+  config.shape = body_shape();
+  const rigid_body::ShapeInfo& info = rigid_body::shapeInfo(config.shape);
+  const std::string size_allowed = rigid_body::sizeRule(config.shape);
+  const std::vector<double> fallback(info.default_size.data(), info.default_size.data() + info.size_count);
+  config.size = readNumbers(params, "size", fallback, static_cast<std::size_t>(info.size_count), size_allowed);
   for (double s : config.size) {
     if (!(s > 0.0)) failAt(params, "size", XmlRpcValue(), size_allowed);
   }
@@ -218,11 +223,9 @@ rigid_body::MassProperties readMassProperties(const XmlRpcValue& params, BodyCon
   }
   // Mass and size together may give an inertia that overflows, underflows or cannot be inverted.
   try {
-    if (config.shape == "box") {
-      return rigid_body::MassProperties::box(mass, Eigen::Vector3d(config.size[0], config.size[1], config.size[2]));
-    }
-    if (config.shape == "sphere") return rigid_body::MassProperties::sphere(mass, config.size[0]);
-    return rigid_body::MassProperties::cylinder(mass, config.size[0], config.size[1]);
+    Eigen::Vector3d size = Eigen::Vector3d::Zero();
+    for (std::size_t k = 0; k < config.size.size(); ++k) size[static_cast<int>(k)] = config.size[k];
+    return info.solid(mass, size);
   } catch (const rigid_body::InvalidMassProperties& error) {
     const XmlRpcValue* size = find(params, "size");
     const XmlRpcValue* given_mass = find(params, "mass");
@@ -273,7 +276,7 @@ BodyConfig parseBody(const XmlRpcValue& params, const NodeConfig& scene, const s
   }
   body.mesh_frame = readString(params, "mesh_frame", "", "must be a tf2 frame id");
   if (!body.mesh_frame.empty()) {
-    if (body.shape != "mesh") failAt(params, "mesh_frame", XmlRpcValue(body.mesh_frame), "is only for shape mesh");
+    if (!body.hasShape(rigid_body::ShapeType::kMesh)) failAt(params, "mesh_frame", XmlRpcValue(body.mesh_frame), "is only for shape mesh");
     body.mesh_frame = readFrame(params, "mesh_frame", "");
   }
   if (const XmlRpcValue* initial = find(params, "initial")) collectUnknown(*initial, "initial/", kInitialNames, unknown);
@@ -504,6 +507,18 @@ NodeConfig loadConfig(const ros::NodeHandle& private_nh) {
   return parseConfig(params, [](const std::string& name, std::string& value) { return ros::param::get(name, value); });
 }
 
+std::string BodyConfig::shapeLabel() const {
+  switch (mass_source) {
+    case MassSource::kShape:
+      return rigid_body::shapeTypeName(shape);
+    case MassSource::kInertia:
+      return "inertia";
+    case MassSource::kUrdf:
+      return "urdf";
+  }
+  return "unknown";
+}
+
 rigid_body::ContactSetup NodeConfig::contactSetup() const {
   rigid_body::ContactSetup setup;
   setup.environment = environment;
@@ -531,7 +546,7 @@ std::string NodeConfig::describe() const {
   for (const BodyConfig& body : bodies) {
     const Eigen::Vector3d& I = body.model.mass.principalMoments();
     out << "\n  body '" << (body.name.empty() ? "(flat)" : body.name) << "': frame " << body.body_frame << ", mass "
-        << body.model.mass.mass() << " kg, shape " << body.shape
+        << body.model.mass.mass() << " kg, shape " << body.shapeLabel()
         << (body.mesh_path.empty() ? "" : " '" + body.mesh_path + "'") << ", principal moments [" << I.x() << ", "
         << I.y() << ", " << I.z() << "] kg m^2, damping " << body.model.forces.linear_damping << " N s/m, "
         << body.model.forces.angular_damping << " N m s/rad, wrench input "

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "parameter_errors.hpp"
 #include "rigid_body_sim/kinematics.hpp"
 #include "rigid_body_sim/ros/conversions.hpp"
 #include "rigid_body_sim/ros/parameters.hpp"
@@ -25,15 +26,7 @@ XmlRpcValue list(std::initializer_list<double> values) {
   return array;
 }
 
-// The message of the ParameterError that `params` raises, or "" if it parses.
-std::string errorOf(const XmlRpcValue& params) {
-  try {
-    parseConfig(params);
-  } catch (const ParameterError& error) {
-    return error.what();
-  }
-  return "";
-}
+using parameter_test::errorOf;
 
 }  // namespace
 
@@ -114,7 +107,7 @@ TEST(Parameters, FullInertiaOverridesTheShape) {
   params["shape"] = std::string("sphere");
   params["inertia"] = list({1.0, 2.0, 2.5, 0.1, 0.0, 0.0});
   const NodeConfig config = parseConfig(params);
-  EXPECT_EQ(config.bodies[0].shape, "inertia");
+  EXPECT_EQ(config.bodies[0].mass_source, rigid_body_ros::MassSource::kInertia);
   EXPECT_EQ(config.bodies[0].model.mass.inertia()(0, 1), 0.1);
   EXPECT_EQ(config.bodies[0].model.mass.inertia()(1, 0), 0.1);
 }
@@ -259,7 +252,7 @@ TEST(Parameters, MeshBodyFromAFileOrAPackageUri) {
   params["density"] = 2700.0;
   params["principal_axes"] = true;
   const NodeConfig config = parseConfig(params);
-  EXPECT_EQ(config.bodies[0].shape, "mesh");
+  EXPECT_TRUE(config.bodies[0].hasShape(rigid_body::ShapeType::kMesh));
   // (2·0.1 − 0.02)·0.02·0.005 m³ of aluminium.
   EXPECT_NEAR(config.bodies[0].model.mass.mass(), 2700.0 * 0.18 * 0.02 * 0.005, 1e-12);
   const Eigen::Matrix3d& I = config.bodies[0].model.mass.inertia();
@@ -392,7 +385,7 @@ TEST(Parameters, BodiesListGivesEachBodyItsKeysAndTheSceneItsOwn) {
   EXPECT_EQ(config.bodies[0].model.forces.linear_damping, 0.5);
   EXPECT_TRUE(config.bodies[0].wrench_input);
   EXPECT_EQ(config.bodies[1].body_frame, "ball_link");
-  EXPECT_EQ(config.bodies[1].shape, "sphere");
+  EXPECT_TRUE(config.bodies[1].hasShape(rigid_body::ShapeType::kSphere));
   EXPECT_FALSE(config.bodies[1].wrench_input);
   EXPECT_EQ(config.bodies[1].initial.p_WB, Eigen::Vector3d(1.0, 0.0, 0.0));
   for (const rigid_body_ros::BodyConfig& body : config.bodies) EXPECT_EQ(body.model.forces.gravity_W.z(), -9.81);  // scene-wide
@@ -587,7 +580,7 @@ TEST(ContactParameters, EachInvalidContactValueNamesItsParameter) {
     XmlRpcValue p;
     p["collision"]["shape"] = std::string("sphere");
     p["collision"]["size"] = list({1e7});
-    cases.push_back({p, "parameter ~collision/size = [10000000]: for a sphere, must be [radius] > 0 [m], each in [1e-6, 1e6] m"});
+    cases.push_back({p, "parameter ~collision/size = [10000000]: for a sphere, must be [radius] with a finite number > 0 [m], each in [1e-6, 1e6] m"});
   }
   {
     XmlRpcValue p;

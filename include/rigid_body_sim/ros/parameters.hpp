@@ -48,12 +48,25 @@ struct NoiseConfig {
   }
 };
 
+/// Where a body's mass properties come from.
+enum class MassSource {
+  kShape,    ///< a uniform solid of `shape` and `size` (a shape with a formula, or a mesh's triangles)
+  kInertia,  ///< ~mass and ~inertia given directly: the body has no shape of its own
+  kUrdf,     ///< a link of a robot description
+};
+
 /// One body of the scene: the keys of the flat one-body form, or of one item of ~bodies.
 struct BodyConfig {
   std::string name;                               ///< topic prefix NAME/ ("" in the flat form: no prefix)
   std::string body_frame = "base_link";
-  std::string shape = "box";                      ///< box | sphere | cylinder | mesh, or "inertia" when given directly
-  std::vector<double> size = {0.4, 0.2, 0.1};     ///< shape dimensions [m]
+  MassSource mass_source = MassSource::kShape;
+  /// With MassSource::kShape: a shape with a solid's formula (rigid_body::ShapeInfo::solid) or a mesh.
+  rigid_body::ShapeType shape = rigid_body::ShapeType::kBox;
+  std::vector<double> size = {0.4, 0.2, 0.1};     ///< shape dimensions [m] (ShapeInfo::size_meaning)
+  /// The shape's name, or "inertia" / "urdf" for a body without one of its own: for logs.
+  std::string shapeLabel() const;
+  /// Whether the body's mass properties come from `shape` being `type`.
+  bool hasShape(rigid_body::ShapeType type) const { return mass_source == MassSource::kShape && shape == type; }
   rigid_body::Model model;                        ///< mass properties and force models (the scene's gravity)
   rigid_body::State initial;                      ///< the state at start-up and after reset
   Eigen::Vector3d initial_linear_velocity_W = Eigen::Vector3d::Zero();   ///< [m/s], world axes
