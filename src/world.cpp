@@ -55,11 +55,11 @@ World::World(const std::vector<BodyDefinition>& bodies, IntegratorType integrato
   if (!(settings.dt >= 1e-9) || !std::isfinite(settings.dt)) {
     throw std::invalid_argument("dt must be a finite number >= 1e-9 [s] (the clock counts nanoseconds)");
   }
-  if (settings.max_substeps < 1 || settings.max_body_steps_per_update < 1 || settings.max_body_steps_per_request < 1) {
+  if (settings.max_substeps < 1 || settings.max_body_steps_per_tick < 1 || settings.max_body_steps_per_request < 1) {
     throw std::invalid_argument("the step caps must be >= 1");
   }
   if (!(settings.max_request_seconds > 0.0)) throw std::invalid_argument("max_request_seconds must be > 0 [s]");
-  if (!(settings.max_update_seconds > 0.0)) throw std::invalid_argument("max_update_seconds must be > 0 [s]");
+  if (!(settings.max_tick_seconds > 0.0)) throw std::invalid_argument("max_tick_seconds must be > 0 [s]");
   if (!(settings.wrench_timeout >= 0.0) || !std::isfinite(settings.wrench_timeout)) {
     throw std::invalid_argument("wrench_timeout must be a finite number >= 0 [s]");
   }
@@ -119,7 +119,7 @@ std::int64_t World::stepAt(Nanoseconds time) const {
 
 std::int64_t World::updateBudget() const {
   return std::min(settings_.max_substeps,
-                  std::max<std::int64_t>(1, settings_.max_body_steps_per_update / runningCount()));
+                  std::max<std::int64_t>(1, settings_.max_body_steps_per_tick / runningCount()));
 }
 
 UpdateResult World::update(Nanoseconds now) {
@@ -145,7 +145,7 @@ UpdateResult World::update(Nanoseconds now) {
   target = std::min(target, last_step_);
   std::int64_t budget = updateBudget();
   // The wall-time budget of a tick (not of our own clock's: that never drops steps).
-  const Nanoseconds deadline = settings_.owns_clock ? kNoDeadline : deadlineAfter(settings_.max_update_seconds);
+  const Nanoseconds deadline = settings_.owns_clock ? kNoDeadline : deadlineAfter(settings_.max_tick_seconds);
   for (const Command& command : pending_) {
     const std::int64_t at = std::max(clock_, std::min(stepAt(command.arrival), std::max(clock_, target)));
     advanceClockTo(at, budget, false, result, deadline);

@@ -1,6 +1,7 @@
 // The core runner: a Scene advanced on a fixed step grid against a clock, with everything about time and
 // inputs. The ROS layer converts each message once into a command stamped with its arrival and hands it
-// here; the timer calls update(now); the lockstep driver calls the same update with its own clock.
+// here; the timer calls update(now) once a tick (one update() is a tick: the word the parameters use, as
+// in max_tick_seconds); the lockstep driver calls the same update with its own clock.
 //
 // Time. The caller's clock is in integer nanoseconds (ROS time's toNSec()). Simulated time is an integer
 // count k of steps of dt on a grid anchored at the start: the state belongs to stamp(k) = anchor +
@@ -39,10 +40,10 @@ std::int64_t wholeStepsIn(double elapsed, double dt);
 struct WorldSettings {
   double dt = 0.001;  ///< the physics step [s], > 0
   /// Catch-up cap: the steps one update() integrates, at most this many per body and, counted in body-steps
-  /// (steps × running bodies), at most max_body_steps_per_update in all; the rest of the due steps pass
+  /// (steps × running bodies), at most max_body_steps_per_tick in all; the rest of the due steps pass
   /// without motion (time lost, counted as dropped). At least one step is always integrated.
   std::int64_t max_substeps = 1000;
-  std::int64_t max_body_steps_per_update = 2000000;
+  std::int64_t max_body_steps_per_tick = 2000000;
   /// step(N) integrates at most this many body-steps (N × running bodies) in one call; a larger N is refused.
   std::int64_t max_body_steps_per_request = 2000000;
   /// step(N) stops once it has taken this much wall time [s] (the clock is read between chunks of about
@@ -55,7 +56,7 @@ struct WorldSettings {
   /// cannot keep real time (a pile of contact bodies) then keeps ticking and publishing, slower in simulated
   /// time, instead of spending seconds in each tick. Not with owns_clock (our own time never drops steps).
   /// Infinite: no limit.
-  double max_update_seconds = std::numeric_limits<double>::infinity();
+  double max_tick_seconds = std::numeric_limits<double>::infinity();
   /// The wall clock step(N) and update() time themselves with [ns]; std::chrono::steady_clock when empty
   /// (tests give their own).
   std::function<Nanoseconds()> wall_clock;

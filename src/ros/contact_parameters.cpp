@@ -14,9 +14,6 @@ namespace rigid_body_ros {
 
 using namespace parameter_values;
 
-const char* const kContactKeys[] = {"iterations", "position_iterations", "restitution_threshold",
-                                    "penetration_slop", "position_correction", "event_location", "continuous",
-                                    nullptr};
 const char* const kEnvironmentKeys[] = {"type", "name", "normal", "offset", "size", "pose", "mesh", "scale",
                                         "restitution", "friction", nullptr};
 const char* const kCollisionKeys[] = {"shape", "size", "mesh", "scale", "restitution", "friction", nullptr};
@@ -218,30 +215,6 @@ std::optional<rigid_body::CollisionShape> readCollision(const XmlRpcValue& param
   }
   if (!own) readMaterial(params, "collision/", shape.material);
   return shape;
-}
-
-rigid_body::ContactSettings readContactSettings(const XmlRpcValue& params) {
-  rigid_body::ContactSettings settings;
-  requireStruct(params, "contact", "iterations, position_iterations, restitution_threshold, penetration_slop, "
-                                   "position_correction, event_location, continuous");
-  settings.iterations = readInteger(params, "contact/iterations", settings.iterations, 1,
-                                    "must be an integer in [1, 1000] (solver sweeps per step)");
-  if (settings.iterations > 1000) failAt(params, "contact/iterations", XmlRpcValue(), "must be an integer in [1, 1000]");
-  settings.position_iterations = readInteger(params, "contact/position_iterations", settings.position_iterations, 0,
-                                             "must be an integer in [0, 1000] (projection sweeps per step)");
-  if (settings.position_iterations > 1000) {
-    failAt(params, "contact/position_iterations", XmlRpcValue(), "must be an integer in [0, 1000]");
-  }
-  settings.restitution_threshold = readNumber(params, "contact/restitution_threshold", settings.restitution_threshold,
-                                              [](double v) { return v >= 0.0 && v <= 1e3; },
-                                              "must be a number in [0, 1000] [m/s]");
-  settings.penetration_slop = readNumber(params, "contact/penetration_slop", settings.penetration_slop,
-                                         [](double s) { return s >= 0.0 && s <= 0.1; }, "must be a number in [0, 0.1] [m]");
-  settings.position_correction = readNumber(params, "contact/position_correction", settings.position_correction,
-                                            [](double b) { return b >= 0.0 && b <= 1.0; }, "must be a number in [0, 1]");
-  settings.event_location = readBool(params, "contact/event_location", settings.event_location);
-  settings.continuous = readBool(params, "contact/continuous", settings.continuous);
-  return settings;
 }
 
 }  // namespace rigid_body_ros

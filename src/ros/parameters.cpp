@@ -21,6 +21,7 @@
 #include "rigid_body_sim/mesh_mass_properties.hpp"
 #include "rigid_body_sim/number_format.hpp"
 #include "rigid_body_sim/ros/contact_parameters.hpp"
+#include "rigid_body_sim/ros/parameter_schema.hpp"
 #include "rigid_body_sim/ros/urdf_body.hpp"
 #include "rigid_body_sim/shape_registry.hpp"
 
@@ -30,38 +31,23 @@ namespace {
 
 using namespace parameter_values;
 
-// The largest rate the timer is asked for; beyond it a ROS timer cannot keep its period anyway.
-constexpr double kMaxRate = 10000.0;
 // Sampling draws this many points at most (each costs a ray test against every triangle).
 constexpr std::uint64_t kMaxSamples = 10000000;
 // The largest mesh file the limit may be raised to [bytes].
 constexpr double kMaxMeshBytesLimit = 4e9;
-// The slowest timer [Hz]: a period of at most 1000 s.
-constexpr double kMinRate = 1e-3;
 // The smallest physics step [s]: a million steps per simulated second.
 constexpr double kMinDt = 1e-6;
-// ~threads: more than this is a typo, not a machine (each is a std::thread).
-constexpr std::size_t kMaxThreads = 256;
-const char* const kThreadsAllowed = "must be an integer in [0, 256] (0: as many as the machine has)";
-// The longest noise/delay [s]: the delay queue holds delay × rate messages.
-constexpr double kMaxNoiseDelay = 3600.0;
 
 // The keys of one body (flat at the top level, or in each item of ~bodies) and the scene-wide keys.
 const std::set<std::string> kBodyNames = {
     "name", "body_frame", "mass", "shape", "size", "inertia", "initial", "linear_damping", "angular_damping",
     "mesh", "scale", "density", "inertia_method", "samples", "principal_axes", "mesh_frame", "wrench_input",
     "max_mesh_bytes", "collision", "urdf", "robot_description", "link"};
-const std::set<std::string> kSceneNames = {
-    "rate", "dt", "integrator", "world_frame", "gravity", "bodies", "wrench_timeout", "max_substeps",
-    "max_body_steps_per_tick", "max_body_steps_per_request", "max_request_seconds", "max_tick_seconds", "publish_tf",
-    "publish", "abs_tolerance", "rel_tolerance", "max_force", "max_torque", "max_energy_growth", "lockstep",
-    "real_time_factor", "start_paused", "noise", "environment", "contact", "marker_rate", "threads",
-    // The live parameters' namespace (dynamic_reconfigure writes its values there); not read at start-up.
-    kLiveNamespace};
-const std::set<std::string> kPublishNames = {"tf", "odom", "state", "applied_wrench", "body_services",
-                                             "per_body_topics"};
-const std::set<std::string> kNoiseNames = {"position_stddev", "orientation_stddev", "linear_velocity_stddev",
-                                           "angular_velocity_stddev", "seed", "delay"};
+// The scene-wide scalar keys come from the schema (parameter_schema.cpp); these group others.
+const std::set<std::string> kSceneGroups = {"bodies", "publish", "noise", "environment", "contact",
+                                            // The live parameters' namespace (dynamic_reconfigure writes its
+                                            // values there); not read at start-up.
+                                            kLiveNamespace};
 const std::set<std::string> kInitialNames = {"position", "orientation", "linear_velocity", "angular_velocity"};
 
 // ~max_mesh_bytes: the largest mesh (or URDF) file a body reads.
@@ -350,11 +336,8 @@ std::vector<BodyConfig> parseBodies(const XmlRpcValue& params, const NodeConfig&
   return bodies;
 }
 
-// rate, dt, the integrator and its settings.
+// dt and the integrator (rate and the tolerances are the schema's).
 void readTiming(const XmlRpcValue& params, NodeConfig& config) {
-  config.rate = readNumber(params, "rate", config.rate, [](double r) { return r > 0.0 && r <= kMaxRate; },
-                           "must be a finite number in (0, 10000] [Hz]");
-  if (config.rate < kMinRate) failAt(params, "rate", XmlRpcValue(), "must be >= 0.001 [Hz] (a timer period of at most 1000 s)");
   const double max_dt = 1.0 / config.rate;
   std::ostringstream dt_allowed;
   dt_allowed << "must be a finite number in (0, 1/rate = " << max_dt << "] [s]";
@@ -369,70 +352,21 @@ void readTiming(const XmlRpcValue& params, NodeConfig& config) {
   } catch (const std::invalid_argument&) {
     failAt(params, "integrator", XmlRpcValue(), integrator_allowed);
   }
-  // dopri5's error control; read for every integrator so a typo is caught whichever is chosen.
-  const auto tolerance = [](double t) { return t >= 1e-15 && t <= 1.0; };
-  config.integrator_settings.abs_tolerance =
-      readNumber(params, "abs_tolerance", config.integrator_settings.abs_tolerance, tolerance,
-                 "must be a finite number in [1e-15, 1] (dopri5's absolute error per step)");
-  config.integrator_settings.rel_tolerance =
-      readNumber(params, "rel_tolerance", config.integrator_settings.rel_tolerance, tolerance,
-                 "must be a finite number in [1e-15, 1] (dopri5's relative error per step)");
 }
 
-// The wrench limits, the divergence guard and the step caps.
-void readLimits(const XmlRpcValue& params, NodeConfig& config) {
-  config.wrench_timeout = readNumber(params, "wrench_timeout", 0.0, [](double t) { return t >= 0.0; },
-                                     "must be a finite number >= 0 [s] (0: hold until the next wrench)");
-  // Not set: no limit (the check still runs and refuses non-finite wrenches).
-  config.wrench_limits.max_force = readNumber(params, "max_force", config.wrench_limits.max_force,
-                                              [](double f) { return f > 0.0; },
-                                              "must be a finite number > 0 [N] (leave it unset for no limit)");
-  config.wrench_limits.max_torque = readNumber(params, "max_torque", config.wrench_limits.max_torque,
-                                               [](double t) { return t > 0.0; },
-                                               "must be a finite number > 0 [N m] (leave it unset for no limit)");
-  config.max_energy_growth = readNumber(params, "max_energy_growth", config.max_energy_growth,
-                                        [](double g) { return g > 1.0; },
-                                        "must be a finite number > 1 (energy factor per tick)");
-  config.max_substeps = readInteger(params, "max_substeps", static_cast<int>(config.max_substeps), 1,
-                                    "must be an integer >= 1");
-  config.max_body_steps_per_tick =
-      readInteger(params, "max_body_steps_per_tick", static_cast<int>(config.max_body_steps_per_tick), 1,
-                  "must be an integer >= 1 (steps x bodies one tick may integrate)");
-  config.max_body_steps_per_request =
-      readInteger(params, "max_body_steps_per_request", static_cast<int>(config.max_body_steps_per_request), 1,
-                  "must be an integer >= 1 (steps x bodies one step request may ask for)");
-  config.max_request_seconds = readNumber(params, "max_request_seconds", config.max_request_seconds,
-                                          [](double s) { return s > 0.0 && s <= 3600.0; },
-                                          "must be a finite number in (0, 3600] [s] (wall time one step request may take)");
-  config.max_tick_seconds = readNumber(params, "max_tick_seconds", config.max_tick_seconds,
-                                       [](double s) { return s > 0.0 && s <= 3600.0; },
-                                       "must be a finite number in (0, 3600] [s] (wall time one tick may integrate for)");
-  config.threads = static_cast<std::size_t>(readInteger(params, "threads", 0, 0, kThreadsAllowed));
-  if (config.threads > kMaxThreads) failAt(params, "threads", XmlRpcValue(), kThreadsAllowed);
-}
-
-// The outputs and the simulation control.
+// The outputs whose rule involves another key (the others are the schema's).
 void readOutputs(const XmlRpcValue& params, NodeConfig& config) {
   // publish_tf is the older spelling of publish/tf; publish/tf wins when both are set.
   config.publish.tf = readBool(params, "publish/tf", readBool(params, "publish_tf", true));
-  config.publish.odom = readBool(params, "publish/odom", true);
-  config.publish.state = readBool(params, "publish/state", true);
-  config.publish.applied_wrench = readBool(params, "publish/applied_wrench", true);
-  config.publish.body_services = readBool(params, "publish/body_services", true);
-  config.publish.per_body_topics = readBool(params, "publish/per_body_topics", true);
-  config.lockstep = readBool(params, "lockstep", false);
-  config.real_time_factor = readNumber(params, "real_time_factor", 1.0, [](double f) { return f >= 0.0; },
-                                       "must be a finite number >= 0 (0: as fast as possible)");
-  config.start_paused = readBool(params, "start_paused", false);
   const double default_marker_rate = std::min(20.0, config.rate);
   std::ostringstream marker_allowed;
   marker_allowed << "must be a finite number in [0.001, rate = " << config.rate << "] [Hz]";
   config.marker_rate = readNumber(params, "marker_rate", default_marker_rate,
-                                  [&](double r) { return r >= kMinRate && r <= config.rate; }, marker_allowed.str());
+                                  [&](double r) { return r >= 1e-3 && r <= config.rate; }, marker_allowed.str());
 }
 
-NoiseConfig readNoise(const XmlRpcValue& params) {
-  NoiseConfig noise;
+// The noise's standard deviations (its seed and delay are the schema's).
+void readNoise(const XmlRpcValue& params, NoiseConfig& noise) {
   const auto readStddev = [&](const std::string& name, const std::string& unit) {
     const Eigen::Vector3d v = readVector3(params, "noise/" + name, unit);
     if ((v.array() < 0.0).any()) failAt(params, "noise/" + name, XmlRpcValue(), "must be 3 numbers >= 0 " + unit);
@@ -442,24 +376,21 @@ NoiseConfig readNoise(const XmlRpcValue& params) {
   noise.orientation_stddev = readStddev("orientation_stddev", "[rad]");
   noise.linear_velocity_stddev = readStddev("linear_velocity_stddev", "[m/s]");
   noise.angular_velocity_stddev = readStddev("angular_velocity_stddev", "[rad/s]");
-  noise.delay = readNumber(params, "noise/delay", 0.0, [](double d) { return d >= 0.0 && d <= kMaxNoiseDelay; },
-                           "must be a finite number in [0, 3600] [s]");
-  noise.seed = readInteger(params, "noise/seed", noise.seed, std::numeric_limits<int>::min(), "must be an integer");
-  return noise;
 }
 
 // Names set but not known, top level first, then the bodies'.
 std::vector<std::string> unknownNames(const XmlRpcValue& params, const std::vector<std::string>& unknown_in_bodies) {
   std::vector<std::string> unknown;
-  std::set<std::string> top_level = kSceneNames;
+  std::set<std::string> top_level = schemaKeys("");
+  top_level.insert(kSceneGroups.begin(), kSceneGroups.end());
   if (!find(params, "bodies")) top_level.insert(kBodyNames.begin(), kBodyNames.end());
   collectUnknown(params, "", top_level, unknown);
-  if (const XmlRpcValue* noise = find(params, "noise")) collectUnknown(*noise, "noise/", kNoiseNames, unknown);
-  if (const XmlRpcValue* publish = find(params, "publish")) collectUnknown(*publish, "publish/", kPublishNames, unknown);
+  if (const XmlRpcValue* noise = find(params, "noise")) collectUnknown(*noise, "noise/", schemaKeys("noise/"), unknown);
+  if (const XmlRpcValue* publish = find(params, "publish")) {
+    collectUnknown(*publish, "publish/", schemaKeys("publish/"), unknown);
+  }
   if (const XmlRpcValue* contact = find(params, "contact")) {
-    std::set<std::string> known;
-    for (const char* const* key = kContactKeys; *key != nullptr; ++key) known.insert(*key);
-    collectUnknown(*contact, "contact/", known, unknown);
+    collectUnknown(*contact, "contact/", schemaKeys("contact/"), unknown);
   }
   unknown.insert(unknown.end(), unknown_in_bodies.begin(), unknown_in_bodies.end());
   return unknown;
@@ -475,18 +406,30 @@ NodeConfig parseConfig(const XmlRpcValue& params, const ParameterReader& reader)
   }
   requireStruct(params, "publish", "tf, odom, state, applied_wrench, body_services, per_body_topics (true or false)");
   requireStruct(params, "noise", "position_stddev, orientation_stddev, linear_velocity_stddev, angular_velocity_stddev, seed, delay");
+  requireStruct(params, "contact", "iterations, position_iterations, restitution_threshold, penetration_slop, "
+                                   "position_correction, event_location, continuous");
+  readSchemaParameters(params, config);
   readTiming(params, config);
   config.world_frame = readFrame(params, "world_frame", config.world_frame);
   config.gravity_W = readVector3(params, "gravity", "[m/s^2]");
   std::vector<std::string> unknown_in_bodies;  // reported after the top-level names
   config.bodies = parseBodies(params, config, unknown_in_bodies, reader);
-  readLimits(params, config);
   readOutputs(params, config);
-  config.noise = readNoise(params);
+  readNoise(params, config.noise);
   config.environment = readEnvironment(params, rigid_body::kDefaultMaxMeshBytes);
-  config.contact = readContactSettings(params);
   config.unknown_parameters = unknownNames(params, unknown_in_bodies);
   return config;
+}
+
+bool isKnownParameter(const std::string& key) {
+  const std::size_t slash = key.find('/');
+  if (slash == std::string::npos) {
+    return schemaKeys("").count(key) > 0 || kSceneGroups.count(key) > 0 || kBodyNames.count(key) > 0;
+  }
+  const std::string group = key.substr(0, slash), rest = key.substr(slash + 1);
+  if (group == "publish" || group == "noise" || group == "contact") return schemaKeys(group + "/").count(rest) > 0;
+  if (group == "initial") return kInitialNames.count(rest) > 0;
+  return false;
 }
 
 std::string resolveMeshUri(const std::string& uri) {
@@ -529,20 +472,9 @@ rigid_body::ContactSetup NodeConfig::contactSetup() const {
 
 std::string NodeConfig::describe() const {
   std::ostringstream out;
-  out << "rate " << rate << " Hz, dt " << dt << " s, integrator " << rigid_body::integratorName(integrator);
-  if (rigid_body::integratorInfo(integrator).adaptive) {
-    out << " (abs_tolerance " << integrator_settings.abs_tolerance << ", rel_tolerance "
-        << integrator_settings.rel_tolerance << ")";
-  }
-  out << ", world frame " << world_frame << ", gravity [" << gravity_W.transpose() << "] m/s^2, " << bodies.size()
-      << (bodies.size() == 1 ? " body" : " bodies") << ", wrench_timeout " << wrench_timeout << " s, max_substeps "
-      << max_substeps << ", max_force " << wrench_limits.max_force << " N, max_torque " << wrench_limits.max_torque
-      << " N m, max_energy_growth " << max_energy_growth << ", threads " << (threads == 0 ? "as many as cores" : std::to_string(threads))
-      << ", publish tf " << (publish.tf ? "true" : "false")
-      << " odom " << (publish.odom ? "true" : "false") << " state " << (publish.state ? "true" : "false")
-      << " applied_wrench " << (publish.applied_wrench ? "true" : "false") << " body_services "
-      << (publish.body_services ? "true" : "false") << " per_body_topics "
-      << (publish.per_body_topics ? "true" : "false");
+  out << "integrator " << rigid_body::integratorName(integrator) << ", world frame " << world_frame << ", gravity ["
+      << gravity_W.transpose() << "] m/s^2, " << bodies.size() << (bodies.size() == 1 ? " body" : " bodies") << ", "
+      << describeSchemaParameters(*this);
   for (const BodyConfig& body : bodies) {
     const Eigen::Vector3d& I = body.model.mass.principalMoments();
     out << "\n  body '" << (body.name.empty() ? "(flat)" : body.name) << "': frame " << body.body_frame << ", mass "

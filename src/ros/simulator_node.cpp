@@ -29,10 +29,10 @@ rigid_body::WorldSettings worldSettings(const NodeConfig& config) {
   rigid_body::WorldSettings settings;
   settings.dt = config.dt;
   settings.max_substeps = config.max_substeps;
-  settings.max_body_steps_per_update = config.max_body_steps_per_tick;
+  settings.max_body_steps_per_tick = config.max_body_steps_per_tick;
   settings.max_body_steps_per_request = config.max_body_steps_per_request;
   settings.max_request_seconds = config.max_request_seconds;
-  settings.max_update_seconds = config.max_tick_seconds;
+  settings.max_tick_seconds = config.max_tick_seconds;
   settings.threads = config.threads;
   settings.wrench_timeout = config.wrench_timeout;
   // ROS time going back by less than one tick period is clock jitter, waited out; more re-anchors the grid.

@@ -146,7 +146,7 @@ TEST(World, StepsBeyondTheSubstepCapAreDroppedAndCounted) {
 
 TEST(World, TheCatchUpCapCountsBodySteps) {
   WorldSettings settings = settingsWith(1000);
-  settings.max_body_steps_per_update = 300;  // 3 bodies: at most 100 steps each per update
+  settings.max_body_steps_per_tick = 300;  // 3 bodies: at most 100 steps each per update
   const Model model{MassProperties::sphere(1.0, 0.1), ForceModel{}};
   World world(std::vector<BodyDefinition>(3, BodyDefinition{model, State(), true}), IntegratorType::kRk4,
               IntegratorSettings(), settings);
@@ -301,7 +301,7 @@ TEST(World, AnUpdatePastItsWallTimeBudgetDropsTheRestOfItsStepsAndTheNextOneGoes
   // (readings at 0.2, 0.3, 0.4 s) and lets the rest pass without motion, counted as dropped.
   Nanoseconds wall = 0;
   WorldSettings settings = settingsWith(100000);  // the catch-up cap out of the way
-  settings.max_update_seconds = 0.25;
+  settings.max_tick_seconds = 0.25;
   settings.wall_clock = [&wall] { return wall += seconds(0.1); };
   World world = makeWorld(settings);
   world.setWrench(0, worldForce(1.0), 0);
@@ -317,16 +317,16 @@ TEST(World, AnUpdatePastItsWallTimeBudgetDropsTheRestOfItsStepsAndTheNextOneGoes
   EXPECT_EQ(next.steps, 10);
   EXPECT_EQ(next.dropped, 0);
   // Without a budget the same late update integrates every step.
-  settings.max_update_seconds = std::numeric_limits<double>::infinity();
+  settings.max_tick_seconds = std::numeric_limits<double>::infinity();
   World unlimited = makeWorld(settings);
   unlimited.setWrench(0, worldForce(1.0), 0);
   EXPECT_EQ(unlimited.update(seconds(5.0)).steps, 5000);
   // A world with its own clock (lockstep) never drops steps for wall time.
-  settings.max_update_seconds = 1e-9;
+  settings.max_tick_seconds = 1e-9;
   settings.owns_clock = true;
   World own = makeWorld(settings);
   EXPECT_EQ(own.update(own.timeOfStep(3000)).steps, 3000);
-  settings.max_update_seconds = -1.0;
+  settings.max_tick_seconds = -1.0;
   EXPECT_THROW(makeWorld(settings), std::invalid_argument);
 }
 

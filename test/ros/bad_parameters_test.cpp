@@ -55,7 +55,7 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Case{"mass", "_mass:=-1", "parameter ~mass = -1: must be a finite number > 0 [kg]"},
                       Case{"mass_type", "_mass:=heavy", "parameter ~mass = 'heavy': must be a finite number > 0"},
                       Case{"integrator", "_integrator:=rk5", "parameter ~integrator = 'rk5': must be one of:"},
-                      Case{"rate", "_rate:=0", "parameter ~rate = 0: must be a finite number in (0, 10000] [Hz]"},
+                      Case{"rate", "_rate:=0", "parameter ~rate = 0: must be a finite number in [0.001, 10000] [Hz]"},
                       Case{"dt", "_dt:=0.5", "parameter ~dt = 0.5: must be a finite number in (0, 1/rate = 0.01] [s]"},
                       Case{"size", "_size:='[0.4,0.2]'", "parameter ~size = '[0.4,0.2]': for a box, must be [x, y, z]"},
                       Case{"shape", "_shape:=cone", "parameter ~shape = 'cone'"},
@@ -72,7 +72,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"cylinder_inertia_overflow", "_shape:=cylinder _mass:=1e308 _size:='[1e5,1e5]'", "parameter ~size"},
                       // Settings that would leave the node silent or stalled.
                       Case{"dt_tiny", "_dt:=1e-300", "parameter ~dt = 1e-300: must be >= 1e-6 [s]"},
-                      Case{"rate_tiny", "_rate:=1e-300", "parameter ~rate = 1e-300: must be >= 0.001 [Hz]"},
+                      Case{"rate_tiny", "_rate:=1e-300", "parameter ~rate = 1e-300: must be a finite number in [0.001, 10000] [Hz]"},
                       Case{"noise_delay", "_noise/delay:=1e9", "parameter ~noise/delay = 1000000000: must be a finite number in [0, 3600]"},
                       Case{"max_substeps_type", "_max_substeps:=1e9", "parameter ~max_substeps"},
                       Case{"request_bound", "_max_body_steps_per_request:=0", "parameter ~max_body_steps_per_request = 0"},

@@ -121,7 +121,7 @@ TEST(Parameters, EachInvalidValueNamesTheParameterAndTheRule) {
   const std::vector<Case> cases = {
       {"mass", XmlRpcValue(-1.0), "parameter ~mass = -1: must be a finite number > 0 [kg]"},
       {"mass", XmlRpcValue(std::string("heavy")), "parameter ~mass = 'heavy'"},
-      {"rate", XmlRpcValue(0.0), "parameter ~rate = 0: must be a finite number in (0, 10000] [Hz]"},
+      {"rate", XmlRpcValue(0.0), "parameter ~rate = 0: must be a finite number in [0.001, 10000] [Hz]"},
       {"dt", XmlRpcValue(0.1), "parameter ~dt = 0.10000000000000001: must be a finite number in (0, 1/rate = 0.01] [s]"},
       {"integrator", XmlRpcValue(std::string("rk5")),
        "parameter ~integrator = 'rk5': must be one of: explicit_euler, semi_implicit_euler, rk4"},
@@ -598,7 +598,7 @@ TEST(ContactParameters, EachInvalidContactValueNamesItsParameter) {
   {
     XmlRpcValue p;
     p["contact"]["penetration_slop"] = 1.0;
-    cases.push_back({p, "parameter ~contact/penetration_slop = 1: must be a number in [0, 0.1] [m]"});
+    cases.push_back({p, "parameter ~contact/penetration_slop = 1: must be a finite number in [0, 0.1] [m]"});
   }
   for (const Case& c : cases) {
     const std::string message = errorOf(c.params);

@@ -22,11 +22,8 @@ std::vector<rigid_body::CollisionShape> readEnvironment(const XmlRpc::XmlRpcValu
 /// body's own shape. `body` has its shape, size and mesh read already.
 std::optional<rigid_body::CollisionShape> readCollision(const XmlRpc::XmlRpcValue& params, const BodyConfig& body);
 
-/// ~contact/: the solver's settings.
-rigid_body::ContactSettings readContactSettings(const XmlRpc::XmlRpcValue& params);
-
-/// The keys known under ~contact/, of an ~environment item and of a body's collision struct.
-extern const char* const kContactKeys[];
+/// The keys known of an ~environment item and of a body's collision struct (~contact/'s are the parameter
+/// schema's rows, parameter_schema.hpp).
 extern const char* const kEnvironmentKeys[];
 extern const char* const kCollisionKeys[];
 

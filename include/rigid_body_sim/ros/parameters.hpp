@@ -158,6 +158,10 @@ using ParameterReader = std::function<bool(const std::string& name, std::string&
 /// know (e.g. "mas", "initial/postion") go to unknown_parameters. `reader` resolves ~robot_description.
 NodeConfig parseConfig(const XmlRpc::XmlRpcValue& params, const ParameterReader& reader = ParameterReader());
 
+/// Whether the node reads `key` (a/b for nested keys: publish/tf, initial/position, contact/iterations):
+/// the scene's and a body's keys, the groups, and the keys within publish, noise, initial and contact.
+bool isKnownParameter(const std::string& key);
+
 /// A ~mesh value as a file path: "package://PKG/rel" becomes PKG's path (rospack) + "/rel"; anything else is
 /// returned as it is. Throws ParameterError if the package is unknown.
 std::string resolveMeshUri(const std::string& uri);
