@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds (Release) and runs the benchmarks: ns per step per integrator and case (every term against the
 # assembled ones, median of 5), a scene of N = 1 … 10 000 bodies (ns per body and step, median of 3) and
-# contact (bodies resting, stacked, in the broad phase only); prints them as the tables of docs/performance.md.
+# contact (bodies resting, stacked, in the broad phase only); prints them in tables (scripts/performance_report.sh writes docs/performance.md).
 # Extra arguments go to Google Benchmark, e.g. --benchmark_filter=general
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Reads Google Benchmark JSON (integrators_benchmark, scene_benchmark) and prints the tables of docs/performance.md:
+"""Reads Google Benchmark JSON (integrators_benchmark, scene_benchmark) and prints tables for a reader (docs/performance.md is scripts/performance_report.sh's):
 ns per step with every term and with the assembled terms, and their ratio; ns per body-step against N."""
 import json
 import sys
