@@ -108,10 +108,13 @@ def anatomy(rows):
 
 
 def text_block(path):
+    """A node script's report: its lines from its "machine:" line on (the build's output before it left out)."""
     if not path or not os.path.exists(path):
         return None
     with open(path) as f:
-        return ["```"] + [line.rstrip("\n") for line in f] + ["```"]
+        lines = [line.rstrip("\n") for line in f]
+    start = next((i for i, line in enumerate(lines) if line.startswith("machine:")), 0)
+    return ["```"] + lines[start:] + ["```"]
 
 
 def main():
