@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "parameter_errors.hpp"
+#include "parameter_test_support.hpp"
 #include "rigid_body_sim/number_format.hpp"
 #include "rigid_body_sim/ros/parameter_schema.hpp"
 
@@ -186,7 +186,9 @@ TEST_P(EveryParameter, TheReadmeTableSaysWhatTheSchemaSays) {
     EXPECT_EQ(unit, spec.unit);
   }
   const std::string range = rigid_body_ros::rangeText(spec);
-  if (spec.store && !range.empty()) EXPECT_EQ(allowed.rfind(range, 0), 0u) << allowed << " should begin " << range;
+  if (spec.store && !range.empty()) {
+    EXPECT_EQ(allowed.rfind(range, 0), 0u) << allowed << " should begin " << range;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Schema, EveryParameter, ::testing::ValuesIn(rigid_body_ros::sceneParameterSchema()), nameOf);

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "parameter_errors.hpp"
+#include "parameter_test_support.hpp"
 #include "rigid_body_sim/ros/parameters.hpp"
 #include "rigid_body_sim/shape_registry.hpp"
 
