@@ -7,6 +7,7 @@
 
 #include "rigid_body_sim/integrators.hpp"
 #include "rigid_body_sim/kinematics.hpp"
+#include "rigid_body_sim/ros/body_properties.hpp"
 #include "rigid_body_sim/ros/time_conversion.hpp"
 
 namespace rigid_body_ros {
@@ -28,6 +29,7 @@ ControlServices::ControlServices(ros::NodeHandle& nh, const NodeConfig& config, 
       nh.advertiseService("clear_wrenches", &ControlServices::onClearWrenches, this),
   };
   using rigid_body_sim::ApplyWrench;
+  using rigid_body_sim::GetProperties;
   using rigid_body_sim::GetState;
   using rigid_body_sim::SetState;
   const bool body_services = config.publish.body_services && config.publish.per_body_topics;
@@ -35,6 +37,9 @@ ControlServices::ControlServices(ros::NodeHandle& nh, const NodeConfig& config, 
     const BodyConfig& body_config = config.bodies[body];
     services_.push_back(nh.advertiseService<GetState::Request, GetState::Response>(
         body_config.topic("get_state"), [this, body](auto& req, auto& res) { return onGetState(body, req, res); }));
+    services_.push_back(nh.advertiseService<GetProperties::Request, GetProperties::Response>(
+        body_config.topic("get_properties"),
+        [this, body](auto& req, auto& res) { return onGetProperties(body, req, res); }));
     services_.push_back(nh.advertiseService<SetState::Request, SetState::Response>(
         body_config.topic("set_state"), [this, body](auto& req, auto& res) { return onSetState(body, req, res); }));
     if (!body_config.wrench_input) continue;  // no input term: no apply_wrench
@@ -177,6 +182,13 @@ bool ControlServices::onGetState(std::size_t body, rigid_body_sim::GetState::Req
   tf2::toMsg(Eigen::Vector3d(motion.R_WB.transpose() * motion.w_WB_W), response.twist_body.angular);
   response.total_steps = world_.scene().integratedSteps(body);
   response.paused = world_.paused();
+  return true;
+}
+
+bool ControlServices::onGetProperties(std::size_t body, rigid_body_sim::GetProperties::Request&,
+                                      rigid_body_sim::GetProperties::Response& response) {
+  fillProperties(config_.bodies[body], rigid_body::integratorName(world_.scene().integratorType()),
+                 world_.scene().terms(body), response);
   return true;
 }
 

@@ -1,5 +1,6 @@
 // Simulation control and realism against a lockstep node: /clock faster than real time, pause, step,
-// reset and reset_time, apply_wrench with a duration and at a point, set_state/get_state, sensor noise,
+// reset and reset_time, apply_wrench with a duration and at a point, set_state/get_state, get_properties,
+// sensor noise,
 // and bit-for-bit reproducibility of a stepped run.
 #include <gtest/gtest.h>
 
@@ -11,6 +12,7 @@
 #include <std_srvs/Trigger.h>
 
 #include "rigid_body_sim/ApplyWrench.h"
+#include "rigid_body_sim/GetProperties.h"
 #include "rigid_body_sim/GetState.h"
 #include "rigid_body_sim/SetState.h"
 #include "rigid_body_sim/Step.h"
@@ -60,6 +62,24 @@ class Control : public ::testing::Test {
 };
 
 }  // namespace
+
+// The lock node's body (control.test): a 2 kg solid sphere of radius 0.1 m, rk4 by default, no collision.
+TEST_F(Control, GetPropertiesSaysWhatTheBodyIs) {
+  const auto p = call<rigid_body_sim::GetProperties>("get_properties").response;
+  EXPECT_EQ(p.mass, kMass);
+  EXPECT_EQ(p.shape, "sphere");
+  ASSERT_EQ(p.size.size(), 1u);
+  EXPECT_EQ(p.size[0], 0.1);
+  const double I = 0.4 * kMass * 0.1 * 0.1;  // (2/5) m r²
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(p.inertia[4 * i], I, 1e-15);  // the diagonal of the row-major 3 × 3
+    EXPECT_NEAR(p.principal_moments[i], I, 1e-15);
+  }
+  EXPECT_EQ(p.inertia[1], 0.0);
+  EXPECT_FALSE(p.collides);
+  EXPECT_TRUE(p.wrench_input);
+  EXPECT_EQ(p.integrator, "rk4");
+}
 
 TEST_F(Control, PausedAtStartThenStepAdvancesExactlyNSteps) {
   const auto before = state();

@@ -1,6 +1,6 @@
 // The node's services, each a translation of a request into one World command and of its reply into the
 // response: scene-wide reset, reset_time, pause, unpause, step, clear_wrenches; per body get_state,
-// set_state and (with wrench input) apply_wrench.
+// get_properties, set_state and (with wrench input) apply_wrench.
 #pragma once
 
 #include <ros/ros.h>
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "rigid_body_sim/ApplyWrench.h"
+#include "rigid_body_sim/GetProperties.h"
 #include "rigid_body_sim/GetState.h"
 #include "rigid_body_sim/SetState.h"
 #include "rigid_body_sim/Step.h"
@@ -40,6 +41,9 @@ class ControlServices {
   /// The state of the last update (its stamp says when); no step is taken for the request.
   bool onGetState(std::size_t body, rigid_body_sim::GetState::Request& request,
                   rigid_body_sim::GetState::Response& response);
+  /// What the body is (body_properties.hpp): constant but for its step terms, which live settings change.
+  bool onGetProperties(std::size_t body, rigid_body_sim::GetProperties::Request& request,
+                       rigid_body_sim::GetProperties::Response& response);
 
  private:
   const NodeConfig& config_;

@@ -105,8 +105,8 @@ struct PublishConfig {
   bool odom = true;            ///< NAME/odom
   bool state = true;           ///< NAME/state
   bool applied_wrench = true;  ///< NAME/applied_wrench
-  /// NAME/get_state, NAME/set_state, NAME/apply_wrench: three registrations per body with the master
-  /// (~1 ms each), which a large scene that does not use them can leave out
+  /// NAME/get_state, NAME/get_properties, NAME/set_state, NAME/apply_wrench: four registrations per body
+  /// with the master (~1 ms each), which a large scene that does not use them can leave out
   bool body_services = true;
   /// false: no per-body topics or services at all; the scene's odometry goes out as one OdometryArray on
   /// bodies/odom and wrenches come in as BodyWrenches on bodies/wrench (a few registrations with the master
