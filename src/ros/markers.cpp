@@ -196,19 +196,9 @@ const visualization_msgs::MarkerArray& Markers::build(const rigid_body::World& w
 
 void Markers::publish(const rigid_body::World& world) {
   if (subscribers_ <= 0) return;
-  const rigid_body::Nanoseconds now = world.stamp();
-  const rigid_body::Nanoseconds period = rigid_body::toNanoseconds(1.0 / config_.marker_rate);
-  // On a grid of the marker period in simulated time: the next array is due one period after the last one
-  // was due, not after it went out, so a late tick does not push every later array back and the arrays
-  // keep the marker rate on average. A rewind (now < last_) publishes at once, and it or falling a whole
-  // period behind starts the grid again at now. Sums saturate at the largest stamp.
-  const bool on_grid = due_ >= 0 && now >= last_;
-  if (on_grid && now < due_) return;
-  constexpr rigid_body::Nanoseconds kLatest = std::numeric_limits<rigid_body::Nanoseconds>::max();
-  const rigid_body::Nanoseconds from = on_grid && now - due_ < period ? due_ : now;
-  due_ = from > kLatest - period ? kLatest : from + period;
-  last_ = now;
-  publisher_.publish(build(world, toRosTime(now)));
+  // On a grid of the marker period in simulated time (OutputSchedule says how a late tick and a rewind go).
+  if (!schedule_.due(world.stamp(), rigid_body::toNanoseconds(1.0 / config_.marker_rate))) return;
+  publisher_.publish(build(world, toRosTime(world.stamp())));
 }
 
 }  // namespace rigid_body_ros

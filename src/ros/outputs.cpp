@@ -130,9 +130,17 @@ void Outputs::publish(const rigid_body::World& world) {
     resets_seen_ = world.counters().resets;
     for (Channel& channel : channels_) channel.max_norm_error = 0.0;
   }
-  for (std::size_t body = 0; body < channels_.size(); ++body) publishBody(world, body, stamp);
-  if (config_.publish.tf) tf_broadcaster_.sendTransform(transforms_);  // every body in one tf message
-  if (array_subscribers_ > 0) publishArray(world, stamp);
+  const rigid_body::Nanoseconds now = world.stamp();
+  const auto dueAt = [now](OutputSchedule& schedule, double rate) {
+    return rate <= 0.0 || schedule.due(now, rigid_body::toNanoseconds(1.0 / rate));
+  };
+  Due due;
+  due.tf = config_.publish.tf && dueAt(tf_schedule_, config_.publish.tf_rate);
+  due.odom = dueAt(odom_schedule_, config_.publish.odom_rate);
+  due.state = dueAt(state_schedule_, config_.publish.state_rate);
+  for (std::size_t body = 0; body < channels_.size(); ++body) publishBody(world, body, stamp, due);
+  if (due.tf) tf_broadcaster_.sendTransform(transforms_);  // every body in one tf message
+  if (due.odom && array_subscribers_ > 0) publishArray(world, stamp);
 }
 
 void Outputs::publishArray(const rigid_body::World& world, const ros::Time& stamp) {
@@ -178,7 +186,7 @@ void Outputs::publishContacts(const rigid_body::World& world, std::size_t body, 
   channel.contacts.publish(message);
 }
 
-void Outputs::publishBody(const rigid_body::World& world, std::size_t body, const ros::Time& stamp) {
+void Outputs::publishBody(const rigid_body::World& world, std::size_t body, const ros::Time& stamp, const Due& due) {
   Channel& channel = channels_[body];
   if (channel.contacts_subscribers > 0) publishContacts(world, body, stamp);
   const rigid_body::Scene& scene = world.scene();
@@ -189,7 +197,7 @@ void Outputs::publishBody(const rigid_body::World& world, std::size_t body, cons
   if (config_.bodies[body].published_offset) {
     frame = publishedFrame(scene.model(body).mass, state, config_.bodies[body].X_BP);
   }
-  if (config_.publish.tf) {
+  if (due.tf) {
     transforms_[body].header.stamp = stamp;
     if (frame) {
       fillTransform(*frame, transforms_[body]);
@@ -197,8 +205,8 @@ void Outputs::publishBody(const rigid_body::World& world, std::size_t body, cons
       fillTransform(state, transforms_[body]);
     }
   }
-  const bool odom = channel.odom_subscribers > 0;
-  if (odom || channel.noise) {
+  const bool odom = due.odom && channel.odom_subscribers > 0;
+  if (odom || (due.odom && channel.noise)) {
     channel.odom_message.header.stamp = stamp;
     if (frame) {
       fillOdometry(*frame, channel.odom_message);
@@ -214,8 +222,9 @@ void Outputs::publishBody(const rigid_body::World& world, std::size_t body, cons
       if (channel.noise) channel.noise->publish(channel.odom_message, stamp);
     }
   }
-  const bool applied_wrench = channel.applied_wrench_subscribers > 0;
-  if (channel.state_subscribers > 0 || applied_wrench) {
+  const bool state_wanted = due.state && channel.state_subscribers > 0;
+  const bool applied_wrench = due.state && channel.applied_wrench_subscribers > 0;
+  if (state_wanted || applied_wrench) {
     channel.state_message.header.stamp = stamp;
     if (frame) {
       fillStateMessage(scene.model(body), state, *frame, scene.input(body), channel.state_message);
@@ -229,7 +238,7 @@ void Outputs::publishBody(const rigid_body::World& world, std::size_t body, cons
                         config_.bodies[body].body_frame.c_str());
       return;
     }
-    if (channel.state_subscribers > 0) channel.state.publish(channel.state_message);
+    if (state_wanted) channel.state.publish(channel.state_message);
   }
   if (applied_wrench) {
     channel.applied_wrench_message.header.stamp = stamp;

@@ -358,6 +358,15 @@ void readTiming(const XmlRpcValue& params, NodeConfig& config) {
 void readOutputs(const XmlRpcValue& params, NodeConfig& config) {
   // publish_tf is the older spelling of publish/tf; publish/tf wins when both are set.
   config.publish.tf = readBool(params, "publish/tf", readBool(params, "publish_tf", true));
+  std::ostringstream rate_allowed;
+  rate_allowed << "must be 0 (every tick) or a finite number in [0.001, rate = " << config.rate << "] [Hz]";
+  const auto outputRate = [&](const char* key) {
+    return readNumber(params, key, 0.0, [&](double r) { return r == 0.0 || (r >= 1e-3 && r <= config.rate); },
+                      rate_allowed.str());
+  };
+  config.publish.tf_rate = outputRate("publish/tf_rate");
+  config.publish.odom_rate = outputRate("publish/odom_rate");
+  config.publish.state_rate = outputRate("publish/state_rate");
   const double default_marker_rate = std::min(20.0, config.rate);
   std::ostringstream marker_allowed;
   marker_allowed << "must be a finite number in [0.001, rate = " << config.rate << "] [Hz]";

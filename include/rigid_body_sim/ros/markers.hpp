@@ -6,6 +6,7 @@
 #include <ros/ros.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "rigid_body_sim/ros/output_schedule.hpp"
 #include "rigid_body_sim/ros/parameters.hpp"
 #include "rigid_body_sim/world.hpp"
 
@@ -28,8 +29,7 @@ class Markers {
   const NodeConfig& config_;
   ros::Publisher publisher_;
   int subscribers_ = 0;
-  rigid_body::Nanoseconds last_ = -1;  ///< the stamp of the last array published
-  rigid_body::Nanoseconds due_ = -1;   ///< when the next one is due (on the marker grid)
+  OutputSchedule schedule_;  ///< at marker_rate
   visualization_msgs::MarkerArray array_;  ///< bodies, environment, then the two contact markers
   std::size_t contact_points_ = 0;         ///< index of the contact points' marker in array_ (if any)
 };

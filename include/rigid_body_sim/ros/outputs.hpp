@@ -1,5 +1,6 @@
 // The state out: per body NAME/odom, NAME/state, NAME/applied_wrench and NAME/odom_noisy, every body's
-// transform in one tf message per tick, /clock in lockstep, the static mesh frames. Only enabled outputs
+// transform in one tf message per tick, /clock in lockstep, the static mesh frames. tf, odometry and state
+// go out every tick or at rates of their own (publish/tf_rate, odom_rate, state_rate: OutputSchedule). Only enabled outputs
 // have a publisher, and an output nobody listens to is not even filled (roscpp finds a publication by a
 // linear search over every advertised topic, so 1000 bodies' unheard odometry alone cost O(N²) a tick).
 // Constant fields (frame ids, covariances) are filled once; a message with a non-finite field is never sent.
@@ -20,6 +21,7 @@
 #include "rigid_body_sim/OdometryArray.h"
 #include "rigid_body_sim/RigidBodyState.h"
 #include "rigid_body_sim/ros/odometry_noise.hpp"
+#include "rigid_body_sim/ros/output_schedule.hpp"
 #include "rigid_body_sim/ros/parameters.hpp"
 #include "rigid_body_sim/world.hpp"
 
@@ -66,7 +68,13 @@ class Outputs {
   void advertise(ros::NodeHandle& nh, std::size_t body, uint32_t queue);
   /// bodies/odom: every body's odometry in one message (publish/per_body_topics: false).
   void publishArray(const rigid_body::World& world, const ros::Time& stamp);
-  void publishBody(const rigid_body::World& world, std::size_t body, const ros::Time& stamp);
+  /// Which of a tick's outputs are due (their rates: PublishConfig).
+  struct Due {
+    bool tf = true;
+    bool odom = true;
+    bool state = true;
+  };
+  void publishBody(const rigid_body::World& world, std::size_t body, const ros::Time& stamp, const Due& due);
 
   const NodeConfig& config_;
   std::vector<Channel> channels_;  ///< sized once: the subscriber-count callbacks hold indices into it
@@ -78,6 +86,7 @@ class Outputs {
   int array_subscribers_ = 0;
   rigid_body_sim::OdometryArray array_message_;
   std::uint64_t withheld_ = 0;
+  OutputSchedule tf_schedule_, odom_schedule_, state_schedule_;
   std::uint64_t resets_seen_ = 0;  ///< the World's reset count when max_norm_error was last cleared
 };
 

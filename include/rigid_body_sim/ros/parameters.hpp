@@ -112,6 +112,10 @@ struct PublishConfig {
   /// bodies/odom and wrenches come in as BodyWrenches on bodies/wrench (a few registrations with the master
   /// instead of ~6 per body: what lets a scene of 10 000 bodies start in seconds)
   bool per_body_topics = true;
+  /// Rates of their own [Hz], at most `rate`, on a grid of simulated time (OutputSchedule); 0: every tick.
+  double tf_rate = 0.0;
+  double odom_rate = 0.0;    ///< NAME/odom, odom_noisy and bodies/odom
+  double state_rate = 0.0;   ///< NAME/state and NAME/applied_wrench
 };
 
 /// Everything the node needs: the scene-wide settings and its bodies, with the defaults of the README's
