@@ -423,3 +423,19 @@ TEST(Parameters, BodiesListErrorsNameTheItem) {
   EXPECT_EQ(config.unknown_parameters[0], "publish/od0m");
   EXPECT_EQ(config.unknown_parameters[1], "bodies[0]/mas");
 }
+
+TEST(Parameters, AnOutputRateAboveTheTickRateOrNegativeIsRefused) {
+  for (const char* key : {"tf_rate", "odom_rate", "state_rate"}) {
+    for (const double bad : {150.0, -1.0, 1e-4}) {
+      XmlRpcValue params;
+      params["publish"][key] = bad;
+      EXPECT_NE(errorOf(params).find(std::string("parameter ~publish/") + key + " = "), std::string::npos) << key;
+      EXPECT_NE(errorOf(params).find("must be 0 (every tick) or a finite number in [0.001, rate = 100] [Hz]"),
+                std::string::npos)
+          << errorOf(params);
+    }
+    XmlRpcValue params;
+    params["publish"][key] = 100.0;  // the tick rate itself is allowed
+    EXPECT_EQ(errorOf(params), "") << key;
+  }
+}
