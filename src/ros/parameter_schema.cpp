@@ -98,6 +98,37 @@ const std::vector<ParameterSpec>& sceneParameterSchema() {
   return schema;
 }
 
+const std::vector<ParameterSpec>& bodyParameterSchema() {
+  using T = ParameterType;
+  // key, type, default (+∞: unset), unit. In the README's order; read by hand (parameters.cpp).
+  static const std::vector<ParameterSpec> schema = {
+      {"body_frame", T::kString, 0.0, anyValue(), "", "", RBS_BY_HAND},
+      {"mass", T::kNumber, 1.0, anyValue(), "kg", "", RBS_BY_HAND},
+      {"shape", T::kString, 0.0, anyValue(), "", "", RBS_BY_HAND},
+      {"size", T::kList, 0.0, anyValue(), "m", "", RBS_BY_HAND},
+      {"inertia", T::kList, 0.0, anyValue(), "kg m²", "", RBS_BY_HAND},
+      {"mesh", T::kString, 0.0, anyValue(), "", "", RBS_BY_HAND},
+      {"scale", T::kNumber, 1.0, anyValue(), "", "", RBS_BY_HAND},
+      {"density", T::kNumber, kInf, anyValue(), "kg/m³", "", RBS_BY_HAND},
+      {"inertia_method", T::kString, 0.0, anyValue(), "", "", RBS_BY_HAND},
+      {"samples", T::kInteger, 100000, anyValue(), "", "", RBS_BY_HAND},
+      {"principal_axes", T::kBool, 0, anyValue(), "", "", RBS_BY_HAND},
+      {"max_mesh_bytes", T::kNumber, 268435456.0, anyValue(), "bytes", "", RBS_BY_HAND},
+      {"urdf", T::kString, 0.0, anyValue(), "", "", RBS_BY_HAND},
+      {"robot_description", T::kString, 0.0, anyValue(), "", "", RBS_BY_HAND},
+      {"link", T::kString, 0.0, anyValue(), "", "", RBS_BY_HAND},
+      {"mesh_frame", T::kString, 0.0, anyValue(), "", "", RBS_BY_HAND},
+      {"initial/position", T::kList, 0.0, anyValue(), "m", "", RBS_BY_HAND},
+      {"initial/orientation", T::kList, 0.0, anyValue(), "", "", RBS_BY_HAND},
+      {"initial/linear_velocity", T::kList, 0.0, anyValue(), "m/s", "", RBS_BY_HAND},
+      {"initial/angular_velocity", T::kList, 0.0, anyValue(), "rad/s", "", RBS_BY_HAND},
+      {"linear_damping", T::kNumber, 0.0, anyValue(), "N s/m", "", RBS_BY_HAND},
+      {"angular_damping", T::kNumber, 0.0, anyValue(), "N m s/rad", "", RBS_BY_HAND},
+      {"wrench_input", T::kBool, 1, anyValue(), "", "", RBS_BY_HAND},
+  };
+  return schema;
+}
+
 #undef RBS_FIELD
 #undef RBS_BY_HAND
 #undef RBS_SHOWN
@@ -200,14 +231,24 @@ std::string describeSchemaParameters(const NodeConfig& config) {
   return text;
 }
 
-std::set<std::string> schemaKeys(const std::string& prefix) {
+namespace {
+std::set<std::string> keysUnder(const std::vector<ParameterSpec>& schema, const std::string& prefix) {
   std::set<std::string> keys;
-  for (const ParameterSpec& spec : sceneParameterSchema()) {
+  for (const ParameterSpec& spec : schema) {
     const std::string key = spec.key;
     if (key.compare(0, prefix.size(), prefix) != 0) continue;
     const std::string rest = key.substr(prefix.size());
     if (rest.find('/') == std::string::npos) keys.insert(rest);
   }
+  return keys;
+}
+}  // namespace
+
+std::set<std::string> schemaKeys(const std::string& prefix) { return keysUnder(sceneParameterSchema(), prefix); }
+
+std::set<std::string> bodySchemaKeys(const std::string& prefix) {
+  std::set<std::string> keys = keysUnder(bodyParameterSchema(), prefix);
+  if (prefix.empty()) keys.insert({"name", "collision", "initial"});
   return keys;
 }
 

@@ -38,17 +38,14 @@ constexpr double kMaxMeshBytesLimit = 4e9;
 // The smallest physics step [s]: a million steps per simulated second.
 constexpr double kMinDt = 1e-6;
 
-// The keys of one body (flat at the top level, or in each item of ~bodies) and the scene-wide keys.
-const std::set<std::string> kBodyNames = {
-    "name", "body_frame", "mass", "shape", "size", "inertia", "initial", "linear_damping", "angular_damping",
-    "mesh", "scale", "density", "inertia_method", "samples", "principal_axes", "mesh_frame", "wrench_input",
-    "max_mesh_bytes", "collision", "urdf", "robot_description", "link"};
+// The keys of one body (flat at the top level, or in each item of ~bodies): the body schema's.
+const std::set<std::string> kBodyNames = bodySchemaKeys("");
 // The scene-wide scalar keys come from the schema (parameter_schema.cpp); these group others.
 const std::set<std::string> kSceneGroups = {"bodies", "publish", "noise", "environment", "contact",
                                             // The live parameters' namespace (dynamic_reconfigure writes its
                                             // values there); not read at start-up.
                                             kLiveNamespace};
-const std::set<std::string> kInitialNames = {"position", "orientation", "linear_velocity", "angular_velocity"};
+const std::set<std::string> kInitialNames = bodySchemaKeys("initial/");
 
 // ~max_mesh_bytes: the largest mesh (or URDF) file a body reads.
 std::size_t readMaxMeshBytes(const XmlRpcValue& params) {

@@ -147,8 +147,9 @@ TEST_P(ScalarParameter, IsAKnownKeyAndItsMisspellingIsNot) {
   EXPECT_EQ(unknown[0], std::string(spec.key) + "x");
 }
 
-TEST_P(EveryParameter, TheReadmeTableSaysWhatTheSchemaSays) {
-  const ParameterSpec& spec = GetParam();
+// The README (or docs/contact.md) row of a schema row has its type, default, unit and, where the schema
+// reads the value itself, its range.
+void expectDocumented(const ParameterSpec& spec) {
   const std::vector<std::string> row = readmeRow(spec.key);
   ASSERT_FALSE(row.empty()) << "README.md (or docs/contact.md) has no row for `" << spec.key << "`";
   const std::string& type = row[1];
@@ -191,7 +192,18 @@ TEST_P(EveryParameter, TheReadmeTableSaysWhatTheSchemaSays) {
   }
 }
 
+TEST_P(EveryParameter, TheReadmeTableSaysWhatTheSchemaSays) { expectDocumented(GetParam()); }
+
+class BodyParameter : public ::testing::TestWithParam<ParameterSpec> {};
+
+TEST_P(BodyParameter, TheReadmeTableSaysWhatTheSchemaSays) {
+  expectDocumented(GetParam());
+  // A body key is known in the flat form and in an item of ~bodies.
+  EXPECT_TRUE(rigid_body_ros::isKnownParameter(GetParam().key)) << GetParam().key;
+}
+
 INSTANTIATE_TEST_SUITE_P(Schema, EveryParameter, ::testing::ValuesIn(rigid_body_ros::sceneParameterSchema()), nameOf);
+INSTANTIATE_TEST_SUITE_P(Schema, BodyParameter, ::testing::ValuesIn(rigid_body_ros::bodyParameterSchema()), nameOf);
 INSTANTIATE_TEST_SUITE_P(Schema, ScalarParameter, ::testing::ValuesIn(rows(isScalar)), nameOf);
 INSTANTIATE_TEST_SUITE_P(Schema, ShownParameter, ::testing::ValuesIn(rows([](const ParameterSpec& s) {
                            return s.load != nullptr;

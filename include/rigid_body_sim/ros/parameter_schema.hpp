@@ -47,6 +47,13 @@ struct ParameterSpec {
 
 /// Every scene-wide scalar key, in the README's order.
 const std::vector<ParameterSpec>& sceneParameterSchema();
+/// Every key of one body (flat at the top level, or in each item of ~bodies; initial/ under it), read by
+/// hand in parameters.cpp (their rules depend on the shape and on each other: no store): their type,
+/// default and unit for the known keys and the README check. `name` and `collision` (a bool or a struct)
+/// are known keys besides.
+const std::vector<ParameterSpec>& bodyParameterSchema();
+/// The keys of the body schema under `prefix` ("" or "initial/"), as schemaKeys does for the scene's.
+std::set<std::string> bodySchemaKeys(const std::string& prefix);
 /// The row of `key`, or null.
 const ParameterSpec* findParameter(const std::string& key);
 /// A row's range as the README writes it: "(0, 3600]", "≥ 0", "> 1", "" for none (an integer's bounds at the
