@@ -22,7 +22,7 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
       {IntegratorType::kExplicitEuler, "explicit_euler", 1, 1, false, false, 0.0, true, "Y += h f(Y), q normalised",
        explicitEulerReference},
       {IntegratorType::kSemiImplicitEuler, "semi_implicit_euler", 1, 1, false, false, 1.0, true,
-       "momenta first, then x and q = exp(w h) q", semiImplicitEulerReference},
+       "momenta first, then x and q turned by the free rotation at the new L", semiImplicitEulerReference},
       {IntegratorType::kRk4, "rk4", 4, 4, false, false, 0.5, true, "classic Runge-Kutta on Y, q normalised",
        rk4Reference},
       {IntegratorType::kRkmk4, "rkmk4", 4, 4, false, false, 0.5, false,

@@ -17,7 +17,8 @@ void fillProperties(const BodyConfig& body, const std::string& integrator, const
   const Eigen::Matrix3d R_BP = body.X_BP.linear();
   const Eigen::Matrix3d I_P = R_BP.transpose() * mass.inertia() * R_BP;
   response.mass = mass.mass();
-  response.center_of_mass = tf2::toMsg(Eigen::Vector3d(body.X_BP.inverse().translation()));
+  // + 0: the identity's inverse has −0 entries (−Rᵀ 0), which would print as "-0.0".
+  response.center_of_mass = tf2::toMsg(Eigen::Vector3d(body.X_BP.inverse().translation() + Eigen::Vector3d::Zero()));
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 3; ++c) response.inertia[3 * r + c] = I_P(r, c);
     response.principal_moments[r] = mass.principalMoments()[r];

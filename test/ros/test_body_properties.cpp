@@ -1,6 +1,8 @@
 // get_properties' response (body_properties.hpp) without a master: what a body is, in its published frame.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
@@ -43,6 +45,7 @@ TEST(BodyProperties, ABoxReportsItsSolidsInertiaShapeSizeAndMaterial) {
   EXPECT_NEAR(I(2, 2), 3.0 * (0.16 + 0.04) / 12.0, 1e-15);
   EXPECT_EQ(I(0, 1), 0.0);
   EXPECT_EQ(r.center_of_mass.x, 0.0);
+  EXPECT_FALSE(std::signbit(r.center_of_mass.x)) << "printed as -0.0";
   EXPECT_TRUE(r.collides);
   EXPECT_EQ(r.collision_shape, "box");
   EXPECT_EQ(r.restitution, 0.0);
