@@ -53,6 +53,18 @@ FrameMotion publishedFrame(const rigid_body::MassProperties& mass, const rigid_b
   return frame;
 }
 
+FrameMotion bodyFrame(const rigid_body::MassProperties& mass, const rigid_body::State& state) {
+  const rigid_body::Motion motion = rigid_body::motionOf(mass, state);
+  return FrameMotion{state.p_WB, state.q_WB, motion.v_WB_W, motion.w_WB_W};
+}
+
+void fillBodyState(const FrameMotion& frame, geometry_msgs::Pose& pose, geometry_msgs::Twist& twist) {
+  pose.position = tf2::toMsg(frame.p_WP);
+  pose.orientation = tf2::toMsg(frame.q_WP);
+  tf2::toMsg(frame.v_WP_W, twist.linear);
+  tf2::toMsg(frame.w_W, twist.angular);
+}
+
 void fillOdometry(const FrameMotion& frame, nav_msgs::Odometry& odom) {
   odom.pose.pose.position = tf2::toMsg(frame.p_WP);
   odom.pose.pose.orientation = tf2::toMsg(frame.q_WP);

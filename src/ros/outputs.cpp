@@ -58,6 +58,16 @@ Outputs::Outputs(ros::NodeHandle& nh, const NodeConfig& config) : config_(config
         "bodies/odom", queue, [this](const ros::SingleSubscriberPublisher&) { ++array_subscribers_; },
         [this](const ros::SingleSubscriberPublisher&) { --array_subscribers_; });
   }
+  if (config.publish.state) {
+    // One topic for the whole scene in every scene (as Gazebo's model_states), filled only while listened to.
+    states_message_.header.frame_id = config.world_frame;
+    for (const BodyConfig& body : config.bodies) states_message_.name.push_back(body.body_frame);
+    states_message_.pose.resize(config.bodies.size());
+    states_message_.twist.resize(config.bodies.size());
+    states_publisher_ = nh.advertise<rigid_body_sim::BodyStates>(
+        "bodies/states", queue, [this](const ros::SingleSubscriberPublisher&) { ++states_subscribers_; },
+        [this](const ros::SingleSubscriberPublisher&) { --states_subscribers_; });
+  }
   if (config.lockstep) clock_publisher_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
 }
 
@@ -141,6 +151,27 @@ void Outputs::publish(const rigid_body::World& world) {
   for (std::size_t body = 0; body < channels_.size(); ++body) publishBody(world, body, stamp, due);
   if (due.tf) tf_broadcaster_.sendTransform(transforms_);  // every body in one tf message
   if (due.odom && array_subscribers_ > 0) publishArray(world, stamp);
+  if (due.state && states_subscribers_ > 0) publishStates(world, stamp);
+}
+
+void Outputs::publishStates(const rigid_body::World& world, const ros::Time& stamp) {
+  const rigid_body::Scene& scene = world.scene();
+  states_message_.header.stamp = stamp;
+  for (std::size_t body = 0; body < channels_.size(); ++body) {
+    // The published frame (a URDF link frame, else the body frame itself), exactly as tf and odom have it.
+    const rigid_body::MassProperties& mass = scene.model(body).mass;
+    const FrameMotion frame = config_.bodies[body].published_offset
+                                  ? publishedFrame(mass, scene.state(body), config_.bodies[body].X_BP)
+                                  : bodyFrame(mass, scene.state(body));
+    if (!frame.v_WP_W.allFinite() || !frame.w_W.allFinite()) {  // a finite state can still overflow P/M
+      ++withheld_;
+      ROS_WARN_THROTTLE(kWarningPeriod, "rigid_body_node: bodies/states withheld: a non-finite velocity of %s",
+                        config_.bodies[body].body_frame.c_str());
+      return;
+    }
+    fillBodyState(frame, states_message_.pose[body], states_message_.twist[body]);
+  }
+  states_publisher_.publish(states_message_);
 }
 
 void Outputs::publishArray(const rigid_body::World& world, const ros::Time& stamp) {

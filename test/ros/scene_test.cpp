@@ -8,6 +8,7 @@
 #include <set>
 #include <string>
 
+#include "rigid_body_sim/BodyStates.h"
 #include "rigid_body_sim/BodyWrenches.h"
 #include "rigid_body_sim/OdometryArray.h"
 #include "test_helpers.hpp"
@@ -132,6 +133,36 @@ TEST(Scene, DiagnosticsShowTheTermsEachBodysStepWasAssembledFrom) {
   EXPECT_EQ(drifter, "translation");
   EXPECT_EQ(box, "translation, rotation (w = R I^-1 R^T L), wrench input");
   EXPECT_EQ(ball, "translation, rotation (isotropic: w = L/I0), wrench input");
+}
+
+// bodies/states in a scene with per-body topics too (pair: a at the origin, b at (2, 0, 0) yawed 90°):
+// every body by its body_frame, in the order of ~bodies, pose and world-axes twist at one stamp, the pose
+// the same as the body's own odometry at that stamp.
+TEST(Scene, BodiesStatesCarriesEveryBodyInEveryScene) {
+  ros::NodeHandle nh;
+  Recorder<rigid_body_sim::BodyStates> states(nh, "pair/bodies/states");
+  Recorder<nav_msgs::Odometry> b_odom(nh, "pair/b/odom");
+  ASSERT_TRUE(states.waitForCount(1));
+  ASSERT_TRUE(b_odom.waitForCount(1));
+  rigid_body_sim::BodyStates s;
+  ASSERT_TRUE(states.waitForStampAfter(b_odom.messages.front().header.stamp, s));
+  ASSERT_EQ(s.name.size(), 2u);
+  EXPECT_EQ(s.name[0], "a");
+  EXPECT_EQ(s.name[1], "b");
+  ASSERT_EQ(s.pose.size(), 2u);
+  ASSERT_EQ(s.twist.size(), 2u);
+  EXPECT_EQ(s.header.frame_id, "world");
+  EXPECT_EQ(s.pose[1].position.x, 2.0);
+  EXPECT_NEAR(s.pose[1].orientation.z, 0.70710678118654752, 1e-15);
+  ASSERT_TRUE(waitUntil([&] { return b_odom.messages.back().header.stamp >= s.header.stamp; }));
+  std::size_t compared = 0;
+  for (const auto& odom : b_odom.messages) {
+    if (odom.header.stamp != s.header.stamp) continue;
+    EXPECT_EQ(odom.pose.pose.position.x, s.pose[1].position.x);
+    EXPECT_EQ(odom.pose.pose.orientation.w, s.pose[1].orientation.w);
+    ++compared;
+  }
+  EXPECT_EQ(compared, 1u) << "b's odometry at the states' stamp";
 }
 
 TEST(Scene, WithoutPerBodyTopicsOneArrayCarriesEveryBodyAndNamedWrenchesMoveTheirBodyOnly) {

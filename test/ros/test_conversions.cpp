@@ -118,3 +118,29 @@ TEST(Conversions, ThePublishedFramesTwistIsTheDerivativeOfItsPose) {
   tf2::fromMsg(odom.twist.twist.linear, v_P);
   EXPECT_LT((last.q_WP * v_P - last.v_WP_W).norm(), 1e-12);
 }
+
+// bodies/states' entry: the published frame's pose, and its origin's velocity and the angular velocity in
+// world axes (not body axes, as odometry): yawed 90°, moving along world +x and spinning about world z at
+// 2 rad/s, with the published frame 0.5 m along body x (world +y here), so its origin moves at
+// v + ω × (R p_BP) = (1, 0, 0) + (0, 0, 2) × (0, 0.5, 0) = (0, 0, 0).
+TEST(Conversions, ABodyStateIsThePublishedFramesPoseAndWorldAxesTwist) {
+  const rigid_body::MassProperties box = rigid_body::MassProperties::box(1.0, Eigen::Vector3d(0.4, 0.2, 0.1));
+  const Eigen::Quaterniond yaw90(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
+  const rigid_body::State state = rigid_body::stateFromVelocities(box, Eigen::Vector3d(1, 2, 3), yaw90,
+                                                                  Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 0, 2));
+  Eigen::Isometry3d X_BP = Eigen::Isometry3d::Identity();
+  X_BP.translation() = Eigen::Vector3d(0.5, 0, 0);
+  geometry_msgs::Pose pose;
+  geometry_msgs::Twist twist;
+  fillBodyState(publishedFrame(box, state, X_BP), pose, twist);
+  EXPECT_NEAR(pose.position.x, 1.0, 1e-15);
+  EXPECT_NEAR(pose.position.y, 2.5, 1e-15);
+  EXPECT_NEAR(twist.linear.x, 0.0, 1e-15);
+  EXPECT_NEAR(twist.linear.y, 0.0, 1e-15);
+  EXPECT_NEAR(twist.angular.z, 2.0, 1e-15);
+  // The body frame itself: the centre of mass moving along world +x, in world axes, its pose the state's.
+  fillBodyState(bodyFrame(box, state), pose, twist);
+  EXPECT_EQ(pose.orientation.w, state.q_WB.w());
+  EXPECT_NEAR(twist.linear.x, 1.0, 1e-15);
+  EXPECT_NEAR(twist.linear.y, 0.0, 1e-15);
+}

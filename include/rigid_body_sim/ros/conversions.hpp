@@ -55,12 +55,18 @@ struct FrameMotion {
 };
 FrameMotion publishedFrame(const rigid_body::MassProperties& mass, const rigid_body::State& state,
                            const Eigen::Isometry3d& X_BP);
+/// The body frame B itself as a FrameMotion (pose and velocities exactly the state's, as odometry has them).
+FrameMotion bodyFrame(const rigid_body::MassProperties& mass, const rigid_body::State& state);
 /// Odometry, tf and the state message of the published frame P instead of B (pose of P, twist of P's
 /// origin; the state's momenta stay about the centre of mass), from publishedFrame's result.
 void fillOdometry(const FrameMotion& frame, nav_msgs::Odometry& odom);
 void fillTransform(const FrameMotion& frame, geometry_msgs::TransformStamped& transform);
 void fillStateMessage(const rigid_body::Model& model, const rigid_body::State& state, const FrameMotion& frame,
                       const rigid_body::AppliedWrench& input, rigid_body_sim::RigidBodyState& message);
+
+/// One body's entry of bodies/states: the published frame's pose in the world frame, its origin's velocity
+/// and the angular velocity, both in world axes (as gazebo_msgs/ModelStates).
+void fillBodyState(const FrameMotion& frame, geometry_msgs::Pose& pose, geometry_msgs::Twist& twist);
 
 /// Translation and rotation of the world → body transform.
 void fillTransform(const rigid_body::State& state, geometry_msgs::TransformStamped& transform);

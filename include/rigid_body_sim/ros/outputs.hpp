@@ -1,6 +1,7 @@
 // The state out: per body NAME/odom, NAME/state, NAME/applied_wrench and NAME/odom_noisy, every body's
 // transform in one tf message per tick, /clock in lockstep, the static mesh frames. tf, odometry and state
-// go out every tick or at rates of their own (publish/tf_rate, odom_rate, state_rate: OutputSchedule). Only enabled outputs
+// go out every tick or at rates of their own (publish/tf_rate, odom_rate, state_rate: OutputSchedule).
+// bodies/states carries every body's pose and twist in one message, in every scene. Only enabled outputs
 // have a publisher, and an output nobody listens to is not even filled (roscpp finds a publication by a
 // linear search over every advertised topic, so 1000 bodies' unheard odometry alone cost O(N²) a tick).
 // Constant fields (frame ids, covariances) are filled once; a message with a non-finite field is never sent.
@@ -17,6 +18,7 @@
 #include <memory>
 #include <vector>
 
+#include "rigid_body_sim/BodyStates.h"
 #include "rigid_body_sim/Contacts.h"
 #include "rigid_body_sim/OdometryArray.h"
 #include "rigid_body_sim/RigidBodyState.h"
@@ -68,6 +70,8 @@ class Outputs {
   void advertise(ros::NodeHandle& nh, std::size_t body, uint32_t queue);
   /// bodies/odom: every body's odometry in one message (publish/per_body_topics: false).
   void publishArray(const rigid_body::World& world, const ros::Time& stamp);
+  /// bodies/states: every body's pose and world-axes twist in one message (every scene, with publish/state).
+  void publishStates(const rigid_body::World& world, const ros::Time& stamp);
   /// Which of a tick's outputs are due (their rates: PublishConfig).
   struct Due {
     bool tf = true;
@@ -85,6 +89,9 @@ class Outputs {
   ros::Publisher array_publisher_;                             ///< bodies/odom, without per-body topics
   int array_subscribers_ = 0;
   rigid_body_sim::OdometryArray array_message_;
+  ros::Publisher states_publisher_;  ///< bodies/states, with publish/state
+  int states_subscribers_ = 0;
+  rigid_body_sim::BodyStates states_message_;
   std::uint64_t withheld_ = 0;
   OutputSchedule tf_schedule_, odom_schedule_, state_schedule_;
   std::uint64_t resets_seen_ = 0;  ///< the World's reset count when max_norm_error was last cleared
