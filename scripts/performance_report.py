@@ -3,22 +3,16 @@
 node's load and lockstep measurements (their text output). Every figure on the page comes from that run; the
 page says when, from which commit and on which machine. Run by scripts/performance_report.sh."""
 import argparse
-import json
 import os
+
+import benchmark_table  # its medians(); this script's own directory is on sys.path
 
 
 def medians(path):
-    """name -> benchmark entry, the median where repetitions were aggregated."""
+    """name -> benchmark entry, the median where repetitions were aggregated; {} for a run not made."""
     if not path or not os.path.exists(path):
         return {}
-    with open(path) as f:
-        data = json.load(f)
-    rows = {}
-    for b in data["benchmarks"]:
-        if b.get("run_type") == "aggregate" and b.get("aggregate_name") != "median":
-            continue
-        rows[b.get("run_name", b["name"])] = b
-    return rows
+    return benchmark_table.medians(path)
 
 
 def ns(entry):

@@ -37,6 +37,8 @@ constexpr std::uint64_t kMaxSamples = 10000000;
 constexpr double kMaxMeshBytesLimit = 4e9;
 // The smallest physics step [s]: a million steps per simulated second.
 constexpr double kMinDt = 1e-6;
+// The slowest output with a rate of its own [Hz] (markers, tf, odometry, state), as the schema's ~rate.
+constexpr double kMinOutputRate = 1e-3;
 
 // The keys of one body (flat at the top level, or in each item of ~bodies): the body schema's.
 const std::set<std::string> kBodyNames = bodySchemaKeys("");
@@ -358,8 +360,8 @@ void readOutputs(const XmlRpcValue& params, NodeConfig& config) {
   std::ostringstream rate_allowed;
   rate_allowed << "must be 0 (every tick) or a finite number in [0.001, rate = " << config.rate << "] [Hz]";
   const auto outputRate = [&](const char* key) {
-    return readNumber(params, key, 0.0, [&](double r) { return r == 0.0 || (r >= 1e-3 && r <= config.rate); },
-                      rate_allowed.str());
+    const auto allowed = [&](double r) { return r == 0.0 || (r >= kMinOutputRate && r <= config.rate); };
+    return readNumber(params, key, 0.0, allowed, rate_allowed.str());
   };
   config.publish.tf_rate = outputRate("publish/tf_rate");
   config.publish.odom_rate = outputRate("publish/odom_rate");
@@ -368,7 +370,8 @@ void readOutputs(const XmlRpcValue& params, NodeConfig& config) {
   std::ostringstream marker_allowed;
   marker_allowed << "must be a finite number in [0.001, rate = " << config.rate << "] [Hz]";
   config.marker_rate = readNumber(params, "marker_rate", default_marker_rate,
-                                  [&](double r) { return r >= 1e-3 && r <= config.rate; }, marker_allowed.str());
+                                  [&](double r) { return r >= kMinOutputRate && r <= config.rate; },
+                                  marker_allowed.str());
 }
 
 // The noise's standard deviations (its seed and delay are the schema's).
