@@ -17,6 +17,7 @@ DEBIAN_PACKAGES=(
   python3-nav-msgs python3-geometry-msgs python3-std-msgs python3-std-srvs python3-tf2-msgs python3-tf2-ros
   libeigen3-dev libgtest-dev libboost-math-dev libbenchmark-dev libbullet-dev pkg-config
   libvisualization-msgs-dev ros-visualization-msgs python3-visualization-msgs
+  libsensor-msgs-dev ros-sensor-msgs python3-sensor-msgs
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure liburdf-dev liburdfdom-dev
   gnuplot-nox libdiagnostic-updater-dev python3-diagnostic-msgs libdiagnostic-msgs-dev libroslib-dev libros-rosgraph-msgs-dev python3-rosgraph-msgs
 )

@@ -112,8 +112,8 @@ void Outputs::setNoise(const NoiseConfig& noise) {
   }
 }
 
-void Outputs::publishMeshFrames(const ros::Time& stamp) {
-  std::vector<geometry_msgs::TransformStamped> mesh_frames;
+void Outputs::publishStaticFrames(const ros::Time& stamp, std::vector<geometry_msgs::TransformStamped> others) {
+  std::vector<geometry_msgs::TransformStamped> mesh_frames = std::move(others);
   for (const BodyConfig& config : config_.bodies) {
     if (config.mesh_frame.empty()) continue;
     // The mesh's own frame relative to the body frame, X_BM = X_MB⁻¹, so visuals can hang on it.

@@ -125,6 +125,17 @@ const std::vector<ParameterSpec>& bodyParameterSchema() {
       {"linear_damping", T::kNumber, 0.0, anyValue(), "N s/m", "", RBS_BY_HAND},
       {"angular_damping", T::kNumber, 0.0, anyValue(), "N m s/rad", "", RBS_BY_HAND},
       {"wrench_input", T::kBool, 1, anyValue(), "", "", RBS_BY_HAND},
+      // A sensor on the body (imu_parameters.cpp): the default rate is the node's rate.
+      {"imu/frame", T::kString, 0.0, anyValue(), "", "", RBS_BY_HAND},
+      {"imu/position", T::kList, 0.0, anyValue(), "m", "", RBS_BY_HAND},
+      {"imu/orientation", T::kList, 0.0, anyValue(), "", "", RBS_BY_HAND},
+      {"imu/rate", T::kNumber, 100.0, anyValue(), "Hz", "", RBS_BY_HAND},
+      {"imu/gyro_noise_density", T::kNumber, 0.0, anyValue(), "rad/s/√Hz", "", RBS_BY_HAND},
+      {"imu/gyro_random_walk", T::kNumber, 0.0, anyValue(), "rad/s²/√Hz", "", RBS_BY_HAND},
+      {"imu/accel_noise_density", T::kNumber, 0.0, anyValue(), "m/s²/√Hz", "", RBS_BY_HAND},
+      {"imu/accel_random_walk", T::kNumber, 0.0, anyValue(), "m/s³/√Hz", "", RBS_BY_HAND},
+      {"imu/orientation_stddev", T::kNumber, 0.0, anyValue(), "rad", "", RBS_BY_HAND},
+      {"imu/seed", T::kInteger, 1, anyValue(), "", "", RBS_BY_HAND},
   };
   return schema;
 }
@@ -248,7 +259,7 @@ std::set<std::string> schemaKeys(const std::string& prefix) { return keysUnder(s
 
 std::set<std::string> bodySchemaKeys(const std::string& prefix) {
   std::set<std::string> keys = keysUnder(bodyParameterSchema(), prefix);
-  if (prefix.empty()) keys.insert({"name", "collision", "initial"});
+  if (prefix.empty()) keys.insert({"name", "collision", "initial", "imu"});
   return keys;
 }
 

@@ -21,6 +21,7 @@
 #include "rigid_body_sim/mesh_mass_properties.hpp"
 #include "rigid_body_sim/number_format.hpp"
 #include "rigid_body_sim/ros/contact_parameters.hpp"
+#include "rigid_body_sim/ros/imu_parameters.hpp"
 #include "rigid_body_sim/ros/parameter_schema.hpp"
 #include "rigid_body_sim/ros/urdf_body.hpp"
 #include "rigid_body_sim/shape_registry.hpp"
@@ -267,6 +268,7 @@ BodyConfig parseBody(const XmlRpcValue& params, const NodeConfig& scene, const s
   if (const XmlRpcValue* initial = find(params, "initial")) collectUnknown(*initial, "initial/", kInitialNames, unknown);
   body.collision = readCollision(params, body);
   if (body.collision) body.collision->name = body.body_frame;
+  body.imu = readImu(params, body, scene, unknown);
   return body;
 }
 
@@ -437,7 +439,7 @@ bool isKnownParameter(const std::string& key) {
   }
   const std::string group = key.substr(0, slash), rest = key.substr(slash + 1);
   if (group == "publish" || group == "noise" || group == "contact") return schemaKeys(group + "/").count(rest) > 0;
-  if (group == "initial") return kInitialNames.count(rest) > 0;
+  if (group == "initial" || group == "imu") return bodySchemaKeys(group + "/").count(rest) > 0;
   return false;
 }
 

@@ -55,6 +55,7 @@ SimulatorNode::SimulatorNode(const ros::NodeHandle& nh, const ros::NodeHandle& p
       wrench_input_(nh_, config_, world_, [this] { return now(); }),
       outputs_(nh_, config_),
       markers_(nh_, config_),
+      imu_(nh_, config_),
       diagnostics_(nh_, private_nh_, config_, world_, wrench_input_, outputs_),
       services_(nh_, config_, world_, wrench_input_, [this] { return now(); },
                 [this] {
@@ -96,7 +97,7 @@ void SimulatorNode::start(const ros::Time& start_time) {
              config.mesh_frame.empty() ? "" : ("; published as tf " + config.body_frame + " -> " + config.mesh_frame).c_str());
     for (const std::string& warning : config.mesh_warnings) ROS_WARN("rigid_body_node: %s", warning.c_str());
   }
-  outputs_.publishMeshFrames(start_time);
+  outputs_.publishStaticFrames(start_time, imu_.sensorFrames(start_time));
   if (config_.lockstep) return;
   const double period = 1.0 / config_.rate;
   timer_ = nh_.createTimer(ros::Duration(period), [this, period](const ros::TimerEvent&) {
@@ -120,6 +121,7 @@ void SimulatorNode::update(const ros::Time& now) {
 void SimulatorNode::publish() {
   outputs_.publish(world_);
   markers_.publish(world_);
+  imu_.publish(world_);
   diagnostics_.tick(world_.stamp());
 }
 

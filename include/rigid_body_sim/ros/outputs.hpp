@@ -33,8 +33,9 @@ class Outputs {
  public:
   Outputs(ros::NodeHandle& nh, const NodeConfig& config);
 
-  /// The static tf body_frame → mesh_frame of the bodies that have one.
-  void publishMeshFrames(const ros::Time& stamp);
+  /// The static tf body_frame → mesh_frame of the bodies that have one, and `others` (the sensors' frames), in
+  /// one latched message: a second static broadcaster of the node would replace the first's.
+  void publishStaticFrames(const ros::Time& stamp, std::vector<geometry_msgs::TransformStamped> others);
   /// Every body's enabled outputs, stamped with the world's stamp.
   void publish(const rigid_body::World& world);
   /// /clock at the world's stamp (lockstep).

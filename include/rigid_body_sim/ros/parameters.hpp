@@ -14,6 +14,8 @@
 #include "rigid_body_sim/collision_shape.hpp"
 #include "rigid_body_sim/contact.hpp"
 #include "rigid_body_sim/dynamics.hpp"
+#include "rigid_body_sim/imu.hpp"
+#include "rigid_body_sim/imu_noise.hpp"
 #include "rigid_body_sim/integrators.hpp"
 #include "rigid_body_sim/state.hpp"
 #include "rigid_body_sim/wrench_limits.hpp"
@@ -46,6 +48,19 @@ struct NoiseConfig {
     return !(position_stddev.isZero(0.0) && orientation_stddev.isZero(0.0) && linear_velocity_stddev.isZero(0.0) &&
              angular_velocity_stddev.isZero(0.0));
   }
+};
+
+/// An IMU on a body (a body's `imu` key): where it sits, how often it reads and how it errs.
+struct ImuConfig {
+  std::string frame;  ///< the sensor's tf frame (header.frame_id of NAME/imu), below body_frame
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();              ///< in the published frame [m]
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< sensor axes in the published frame
+  double rate = 0.0;                 ///< [Hz], at most the node's rate (0 until read: the node's rate)
+  rigid_body::SensorNoise gyro;      ///< [rad/s/√Hz], [rad/s²/√Hz]
+  rigid_body::SensorNoise accel;     ///< [m/s²/√Hz], [m/s³/√Hz]
+  double orientation_stddev = 0.0;   ///< [rad] white noise on the orientation, about the sensor's axes
+  int seed = 1;                      ///< the noise generators' seed (reproducible)
+  rigid_body::ImuMount mount;        ///< the sensor in the body frame B at the centre of mass (from the above)
 };
 
 /// Where a body's mass properties come from.
@@ -95,6 +110,7 @@ struct BodyConfig {
   double visual_mesh_scale = 1.0;
   Eigen::Isometry3d X_PV = Eigen::Isometry3d::Identity();    ///< a mesh <visual>'s pose in P
 
+  std::optional<ImuConfig> imu;  ///< `imu`: a sensor on the body, publishing NAME/imu
   /// NAME/ + `topic`, or `topic` alone in the flat form.
   std::string topic(const std::string& topic) const { return name.empty() ? topic : name + "/" + topic; }
 };

@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "rigid_body_sim/ros/control_services.hpp"
+#include "rigid_body_sim/ros/imu_outputs.hpp"
 #include "rigid_body_sim/ros/node_diagnostics.hpp"
 #include "rigid_body_sim/ros/live_parameters.hpp"
 #include "rigid_body_sim/ros/markers.hpp"
@@ -62,6 +63,7 @@ class SimulatorNode {
   WrenchInput wrench_input_;
   Outputs outputs_;
   Markers markers_;
+  ImuOutputs imu_;
   NodeDiagnostics diagnostics_;
   ControlServices services_;
   LiveParameters live_;
