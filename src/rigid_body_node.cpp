@@ -3,14 +3,32 @@
 #include <ros/ros.h>
 #include <xmlrpcpp/XmlRpcException.h>
 
+#include <atomic>
+#include <csignal>
 #include <exception>
 #include <memory>
 
 #include "rigid_body_sim/ros/parameters.hpp"
 #include "rigid_body_sim/ros/simulator_node.hpp"
 
+namespace {
+
+// Set by SIGINT/SIGTERM. The lockstep loop stops on it and the node then undoes what it changed on the master
+// (/use_sim_time) before it shuts down: roscpp's own handler would end the master connection first.
+std::atomic<bool> g_stop_requested{false};
+bool g_lockstep = false;
+
+void requestStop(int /*signal*/) {
+  g_stop_requested = true;
+  if (!g_lockstep) ros::requestShutdown();  // async-signal-safe: it only sets roscpp's flag
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "rigid_body_node");
+  ros::init(argc, argv, "rigid_body_node", ros::init_options::NoSigintHandler);
+  std::signal(SIGINT, requestStop);
+  std::signal(SIGTERM, requestStop);
   ros::NodeHandle nh;
   ros::NodeHandle private_nh("~");
   rigid_body_ros::NodeConfig config;
@@ -32,6 +50,11 @@ int main(int argc, char** argv) {
                "the scene on bodies/odom and bodies/wrench, a few registrations in all",
                config.bodies.size());
     }
+    if (config.publish.clock && !config.lockstep && ros::Time::isSimTime()) {
+      throw rigid_body_ros::ParameterError(
+          "parameter ~publish/clock = true: not allowed under /use_sim_time = true, where the node follows "
+          "another /clock; lockstep: true makes the node the owner of simulated time and of /clock");
+    }
     node = std::make_unique<rigid_body_ros::SimulatorNode>(nh, private_nh, config);
     ROS_INFO("rigid_body_node: start-up: parameters read in %.3f s, %zu bodies' topics and services set up in %.3f s",
              (parsed - begin).toSec(), config.bodies.size(), (ros::WallTime::now() - parsed).toSec());
@@ -46,10 +69,16 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (config.lockstep) {
-    // The node owns simulated time: other nodes follow /clock (as with Gazebo, /use_sim_time is set if unset).
-    if (!ros::param::has("/use_sim_time")) ros::param::set("/use_sim_time", true);
+    // The node owns simulated time: other nodes follow /clock (as with Gazebo, /use_sim_time is set if unset),
+    // and a parameter it set is deleted at exit, so that the next node started on this master is on wall time.
+    g_lockstep = true;
+    const bool set_sim_time = !ros::param::has("/use_sim_time");
+    if (set_sim_time) ros::param::set("/use_sim_time", true);
     node->start(ros::Time(0));
-    node->runLockstep();
+    node->runLockstep([] { return !g_stop_requested; });
+    if (set_sim_time) ros::param::del("/use_sim_time");
+    node.reset();
+    ros::shutdown();
     return 0;
   }
   ros::Time::waitForValid();  // under /use_sim_time, until the first /clock message

@@ -68,7 +68,7 @@ Outputs::Outputs(ros::NodeHandle& nh, const NodeConfig& config) : config_(config
         "bodies/states", queue, [this](const ros::SingleSubscriberPublisher&) { ++states_subscribers_; },
         [this](const ros::SingleSubscriberPublisher&) { --states_subscribers_; });
   }
-  if (config.lockstep) clock_publisher_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  if (config.lockstep || config.publish.clock) clock_publisher_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
 }
 
 void Outputs::advertise(ros::NodeHandle& nh, std::size_t body, uint32_t queue) {

@@ -70,6 +70,7 @@ const std::vector<ParameterSpec>& sceneParameterSchema() {
       {"publish/applied_wrench", T::kBool, 1, anyValue(), "", "", RBS_FIELD(publish.applied_wrench)},
       {"publish/per_body_topics", T::kBool, 1, anyValue(), "", "", RBS_FIELD(publish.per_body_topics)},
       {"publish/body_services", T::kBool, 1, anyValue(), "", "", RBS_FIELD(publish.body_services)},
+      {"publish/clock", T::kBool, 0, anyValue(), "", "", RBS_FIELD(publish.clock)},
       {"publish/tf_rate", T::kNumber, 0.0, anyValue(), "Hz", "0 or in [0.001, rate]", RBS_SHOWN(publish.tf_rate)},
       {"publish/odom_rate", T::kNumber, 0.0, anyValue(), "Hz", "0 or in [0.001, rate]", RBS_SHOWN(publish.odom_rate)},
       {"publish/state_rate", T::kNumber, 0.0, anyValue(), "Hz", "0 or in [0.001, rate]",

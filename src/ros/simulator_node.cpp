@@ -119,6 +119,9 @@ void SimulatorNode::update(const ros::Time& now) {
 }
 
 void SimulatorNode::publish() {
+  // Outside lockstep /clock goes out with each publication, before the outputs it stamps (lockstep's driver
+  // publishes its own, also after a step request).
+  if (config_.publish.clock && !config_.lockstep) outputs_.publishClock(world_);
   outputs_.publish(world_);
   markers_.publish(world_);
   imu_.publish(world_);
@@ -160,13 +163,13 @@ void SimulatorNode::report(const rigid_body::UpdateResult& result) {
   }
 }
 
-void SimulatorNode::runLockstep() {
+void SimulatorNode::runLockstep(const std::function<bool()>& keep_running) {
   const std::int64_t steps_per_publish =
       std::max<std::int64_t>(1, std::llround(std::min(1e12, 1.0 / (config_.rate * config_.dt))));
   outputs_.publishClock(world_);
   ros::WallTime pace_start = ros::WallTime::now();
   std::int64_t pace_steps = world_.clockSteps();
-  while (ros::ok()) {
+  while (ros::ok() && keep_running()) {
     ros::spinOnce();  // wrenches and services act between two steps
     if (world_.paused() || world_.endOfTime()) {
       ros::WallDuration(kPausedPoll).sleep();

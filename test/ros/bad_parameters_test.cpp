@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdio>
+#include <functional>
 #include <string>
 
 namespace {
@@ -19,17 +20,30 @@ struct Outcome {
 
 // Runs the node with `arguments` (bounded by `timeout`, so a node that wrongly keeps running fails the test
 // instead of hanging it) and returns its exit code and combined output.
-Outcome runNode(const std::string& name, const std::string& arguments, int timeout = 20) {
-  const std::string command = "timeout " + std::to_string(timeout) + " " RIGID_BODY_NODE_PATH " __name:=" + name + " " +
-                              arguments + " 2>&1";
+// `signal` is what `timeout` sends (TERM, or INT as Ctrl-C); `while_running` is called once the node started.
+Outcome runNode(const std::string& name, const std::string& arguments, int timeout = 20,
+                const std::string& signal = "TERM", const std::function<void()>& while_running = [] {}) {
+  const std::string command = "timeout -s " + signal + " " + std::to_string(timeout) + " " RIGID_BODY_NODE_PATH
+                              " __name:=" + name + " " + arguments + " 2>&1";
   Outcome outcome;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return outcome;
+  while_running();
   std::array<char, 512> buffer;
   while (fgets(buffer.data(), buffer.size(), pipe)) outcome.output += buffer.data();
   const int status = pclose(pipe);
   outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return outcome;
+}
+
+// Waits (bounded) until /use_sim_time is present on the master.
+bool waitForSimTimeParameter() {
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(10.0);
+  while (!ros::param::has("/use_sim_time")) {
+    if (ros::WallTime::now() > deadline) return false;
+    ros::WallDuration(0.01).sleep();
+  }
+  return true;
 }
 
 struct Case {
@@ -114,6 +128,38 @@ TEST(GoodParameters, TheSameBinaryRunsWithValidOnes) {
   const Outcome outcome = runNode("good", "_mass:=2.0 _rate:=20", 3);
   EXPECT_EQ(outcome.exit_code, 124) << outcome.output;
   EXPECT_EQ(outcome.output.find("FATAL"), std::string::npos) << outcome.output;
+}
+
+TEST(SimulatedTime, PublishClockIsRefusedUnderUseSimTime) {
+  // Under /use_sim_time the node follows another /clock: publishing its own would feed it back to itself.
+  ros::param::set("/use_sim_time", true);
+  const Outcome outcome = runNode("clocked", "_publish/clock:=true");
+  ros::param::del("/use_sim_time");
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find("parameter ~publish/clock = true"), std::string::npos) << outcome.output;
+}
+
+TEST(SimulatedTime, ALockstepNodeDeletesTheUseSimTimeItSetWhenItExits) {
+  // Ctrl-C (INT) and kill (TERM): both end the loop, and the parameter the node set is gone afterwards, so
+  // that a later node on this master is on wall time again.
+  for (const char* signal : {"INT", "TERM"}) {
+    ros::param::del("/use_sim_time");
+    bool set_while_running = false;
+    const Outcome outcome = runNode(std::string("lockstep_") + signal, "_lockstep:=true _real_time_factor:=1.0", 3,
+                                    signal, [&] { set_while_running = waitForSimTimeParameter(); });
+    EXPECT_TRUE(set_while_running) << signal;
+    EXPECT_EQ(outcome.exit_code, 124) << signal << ": " << outcome.output;  // stopped by the signal, not failed
+    EXPECT_FALSE(ros::param::has("/use_sim_time")) << signal << ": " << outcome.output;
+  }
+}
+
+TEST(SimulatedTime, ALockstepNodeLeavesAUseSimTimeSetBySomeoneElse) {
+  ros::param::set("/use_sim_time", true);
+  const Outcome outcome = runNode("lockstep_kept", "_lockstep:=true", 2, "INT");
+  bool value = false;
+  EXPECT_TRUE(ros::param::get("/use_sim_time", value)) << outcome.output;
+  EXPECT_TRUE(value);
+  ros::param::del("/use_sim_time");
 }
 
 int main(int argc, char** argv) {

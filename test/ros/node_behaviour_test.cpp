@@ -3,12 +3,14 @@
 #include <gtest/gtest.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
+#include <rosgraph_msgs/Clock.h>
 #include <std_srvs/Empty.h>
 #include <tf2_eigen/tf2_eigen.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -341,6 +343,27 @@ TEST_F(NodeBehaviour, WrenchDropsToZeroAfterTheTimeout) {
   nav_msgs::Odometry latest;
   ASSERT_TRUE(odom.waitForStampAfter(later.header.stamp + ros::Duration(0.1), latest));
   EXPECT_EQ(worldVelocity(latest).x(), worldVelocity(later).x());  // no longer accelerating
+}
+
+TEST_F(NodeBehaviour, PublishClockOutsideLockstepStampsEveryOutputWithAClockValue) {
+  // Catches a node that publishes no /clock outside lockstep, one behind or ahead of its outputs, and one
+  // whose /clock goes backwards or repeats.
+  std::vector<ros::Time> clock;
+  ros::Subscriber clock_subscriber = nh_.subscribe<rosgraph_msgs::Clock>(
+      "/clock", 1000, [&](const rosgraph_msgs::Clock::ConstPtr& m) { clock.push_back(m->clock); });
+  Recorder<nav_msgs::Odometry> odom(nh_, "clocked/odom");
+  ASSERT_TRUE(odom.waitForConnection());
+  ASSERT_TRUE(waitUntil([&] { return clock_subscriber.getNumPublishers() > 0; }));
+  ASSERT_TRUE(waitUntil([&] { return odom.messages.size() >= 20 && clock.size() >= 20; }));
+  for (std::size_t k = 1; k < clock.size(); ++k) EXPECT_LT(clock[k - 1], clock[k]) << k;
+  // Each odometry stamp (after the first /clock received) is a /clock value: the clock goes out first.
+  std::size_t matched = 0;
+  for (const auto& m : odom.messages) {
+    if (m.header.stamp < clock.front()) continue;
+    EXPECT_TRUE(std::binary_search(clock.begin(), clock.end(), m.header.stamp)) << m.header.stamp;
+    ++matched;
+  }
+  EXPECT_GE(matched, 10u);
 }
 
 int main(int argc, char** argv) {

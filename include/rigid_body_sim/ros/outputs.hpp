@@ -38,7 +38,7 @@ class Outputs {
   void publishStaticFrames(const ros::Time& stamp, std::vector<geometry_msgs::TransformStamped> others);
   /// Every body's enabled outputs, stamped with the world's stamp.
   void publish(const rigid_body::World& world);
-  /// /clock at the world's stamp (lockstep).
+  /// /clock at the world's stamp (lockstep, or publish/clock).
   void publishClock(const rigid_body::World& world);
 
   /// Messages withheld because a field was not finite (e.g. a kinetic energy that overflowed).
@@ -86,7 +86,7 @@ class Outputs {
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   std::unique_ptr<tf2_ros::StaticTransformBroadcaster> mesh_frame_broadcaster_;
   std::vector<geometry_msgs::TransformStamped> transforms_;  ///< one per body when tf is published
-  ros::Publisher clock_publisher_;                             ///< lockstep only
+  ros::Publisher clock_publisher_;                             ///< lockstep or publish/clock only
   ros::Publisher array_publisher_;                             ///< bodies/odom, without per-body topics
   int array_subscribers_ = 0;
   rigid_body_sim::OdometryArray array_message_;

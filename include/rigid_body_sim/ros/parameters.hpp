@@ -128,6 +128,9 @@ struct PublishConfig {
   /// bodies/odom and wrenches come in as BodyWrenches on bodies/wrench (a few registrations with the master
   /// instead of ~6 per body: what lets a scene of 10 000 bodies start in seconds)
   bool per_body_topics = true;
+  /// /clock at every publication also outside lockstep (the simulation's stamps, on ROS time), for tools that
+  /// expect one; refused under /use_sim_time, where the node follows /clock itself
+  bool clock = false;
   /// Rates of their own [Hz], at most `rate`, on a grid of simulated time (OutputSchedule); 0: every tick.
   double tf_rate = 0.0;
   double odom_rate = 0.0;    ///< NAME/odom, odom_noisy and bodies/odom

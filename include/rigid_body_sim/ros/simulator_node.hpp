@@ -36,8 +36,8 @@ class SimulatorNode {
 
   /// Lockstep: the node owns simulated time. Steps the scene, publishes /clock and the outputs at `rate`,
   /// paces itself by real_time_factor (0: as fast as possible), serves callbacks between steps; returns at
-  /// shutdown. Called instead of ros::spin().
-  void runLockstep();
+  /// shutdown or when `keep_running` says false. Called instead of ros::spin().
+  void runLockstep(const std::function<bool()>& keep_running = [] { return true; });
 
   /// One tick: the World integrates up to `now`; the state is published if the clock reached a new grid
   /// point. Published stamps advance by whole steps of dt, so they strictly increase.
