@@ -13,10 +13,6 @@ namespace {
 // Seconds between two warnings about refused values (a flood of requests warns once per period).
 constexpr double kRefusedWarningPeriod = 2.0;
 
-// dynamic_reconfigure has no "unset": a limit of 0 means no limit, as an unset ~max_force does.
-double limitFrom(double value) { return value > 0.0 ? value : std::numeric_limits<double>::infinity(); }
-double limitTo(double value) { return std::isfinite(value) ? value : 0.0; }
-
 }  // namespace
 
 rigid_body_sim::RigidBodyConfig LiveParameters::fromNodeConfig(const NodeConfig& config) {
@@ -28,8 +24,8 @@ rigid_body_sim::RigidBodyConfig LiveParameters::fromNodeConfig(const NodeConfig&
   live.gravity_y = config.gravity_W.y();
   live.gravity_z = config.gravity_W.z();
   live.wrench_timeout = config.wrench_timeout;
-  live.max_force = limitTo(config.wrench_limits.max_force);
-  live.max_torque = limitTo(config.wrench_limits.max_torque);
+  live.max_force = config.wrench_limits.max_force;  // +inf when unset: no limit
+  live.max_torque = config.wrench_limits.max_torque;
   live.real_time_factor = config.real_time_factor;
   live.marker_rate = config.marker_rate;
   // The noise is per axis at start-up; live, one value for every axis (it starts at the x axis's).
@@ -50,15 +46,18 @@ LiveParameters::LiveParameters(const ros::NodeHandle& private_nh, NodeConfig& co
   server_->setCallback([this](rigid_body_sim::RigidBodyConfig& requested, uint32_t level) { onChange(requested, level); });
 }
 
-void LiveParameters::keepFiniteValues(rigid_body_sim::RigidBodyConfig& requested) {
+void LiveParameters::keepValidValues(rigid_body_sim::RigidBodyConfig& requested) {
   // The server clamps each value into the .cfg's range, but a NaN fails both of its comparisons and passes.
   // Every double of the config is checked by its message form, so that a parameter added later is too.
+  // (An infinity is clamped to a finite end, except the limits' open top, where +inf means no limit.) A
+  // limit of 0 or below (clamped to 0) would reject every wrench: refused, not read as "no limit".
   dynamic_reconfigure::Config asked, kept;
   requested.__toMessage__(asked);
   current_.__toMessage__(kept);
   std::string refused;
   for (dynamic_reconfigure::DoubleParameter& value : asked.doubles) {
-    if (std::isfinite(value.value)) continue;
+    const bool limit = value.name == "max_force" || value.name == "max_torque";
+    if (!std::isnan(value.value) && !(limit && value.value <= 0.0)) continue;
     for (const dynamic_reconfigure::DoubleParameter& in_force : kept.doubles) {
       if (in_force.name == value.name) value.value = in_force.value;
     }
@@ -68,13 +67,13 @@ void LiveParameters::keepFiniteValues(rigid_body_sim::RigidBodyConfig& requested
   requested.__fromMessage__(asked);
   ++refused_;
   ROS_WARN_THROTTLE(kRefusedWarningPeriod,
-                    "rigid_body_node: live parameters: non-finite %s refused, the values in force kept (%llu "
-                    "requests refused so far)",
+                    "rigid_body_node: live parameters: %s refused (NaN, or a limit not > 0), the values in force "
+                    "kept (%llu requests refused so far)",
                     refused.c_str(), static_cast<unsigned long long>(refused_));
 }
 
 void LiveParameters::onChange(rigid_body_sim::RigidBodyConfig& requested, uint32_t) {
-  keepFiniteValues(requested);  // what the server then writes back to the parameter server, too
+  keepValidValues(requested);  // what the server then writes back to the parameter server, too
   const rigid_body::Nanoseconds arrival = now_();
   // Forces: applied to every body when one of them changed (gravity is the scene's; damping is set for all).
   const bool damping = requested.linear_damping != current_.linear_damping ||
@@ -99,8 +98,8 @@ void LiveParameters::onChange(rigid_body_sim::RigidBodyConfig& requested, uint32
     config_.wrench_timeout = requested.wrench_timeout;
     world_.setWrenchTimeout(requested.wrench_timeout, arrival);
   }
-  config_.wrench_limits.max_force = limitFrom(requested.max_force);
-  config_.wrench_limits.max_torque = limitFrom(requested.max_torque);
+  config_.wrench_limits.max_force = requested.max_force;
+  config_.wrench_limits.max_torque = requested.max_torque;
   config_.real_time_factor = requested.real_time_factor;
   // The marker rate stays within the node's rate, as at start-up.
   requested.marker_rate = std::min(requested.marker_rate, config_.rate);

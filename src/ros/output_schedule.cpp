@@ -5,11 +5,13 @@
 namespace rigid_body_ros {
 
 bool OutputSchedule::due(rigid_body::Nanoseconds now, rigid_body::Nanoseconds period) {
-  const bool on_grid = due_ >= 0 && now >= last_;
-  if (on_grid && now < due_) return false;
+  const bool on_grid = grid_ >= 0 && now >= last_;
   constexpr rigid_body::Nanoseconds kLatest = std::numeric_limits<rigid_body::Nanoseconds>::max();
-  const rigid_body::Nanoseconds from = on_grid && now - due_ < period ? due_ : now;
-  due_ = from > kLatest - period ? kLatest : from + period;
+  // The next point is computed from the current period at each call, so a live rate change counts from the
+  // last point served: a rate turned from 0.001 Hz back to 20 Hz is due 50 ms after the last output.
+  const rigid_body::Nanoseconds next = on_grid ? (grid_ > kLatest - period ? kLatest : grid_ + period) : now;
+  if (on_grid && now < next) return false;
+  grid_ = on_grid && now - next < period ? next : now;
   last_ = now;
   return true;
 }

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "rigid_body_sim/ApplyWrench.h"
 #include "rigid_body_sim/ros/parameters.hpp"
 #include "test_helpers.hpp"
 
@@ -96,7 +97,7 @@ TEST(LiveParameters, ANonFiniteValueIsRefusedAndTheValuesInForceKept) {
   }
   ASSERT_TRUE(ros::service::call("noisy/node/live/set_parameters", request));
   for (const dynamic_reconfigure::DoubleParameter& reply : request.response.config.doubles) {
-    EXPECT_TRUE(std::isfinite(reply.value)) << reply.name << " came back as " << reply.value;
+    EXPECT_FALSE(std::isnan(reply.value)) << reply.name << " came back as NaN";
   }
   for (std::size_t i = 0; i < names.size(); ++i) {
     double value = std::numeric_limits<double>::quiet_NaN();
@@ -130,11 +131,36 @@ TEST(LiveParameters, NoiseSetToZeroMakesTheNoisyOdometryTheTruth) {
   EXPECT_TRUE(matched) << "the noisy copy at its stamp is not the truth";
 }
 
+TEST(LiveParameters, AWrenchLimitOfZeroOrBelowIsRefusedNotReadAsNoLimit) {
+  // A node that read 0 (or −5, which the server clamps to 0) as "no limit" would accept the 30 N wrench
+  // after the refused change; one that applied it would reject every wrench, even 1 N.
+  auto accepted = [](double force) {
+    rigid_body_sim::ApplyWrench call;
+    call.request.wrench.force.x = force;
+    EXPECT_TRUE(ros::service::waitForService("live/apply_wrench", ros::Duration(10.0)));
+    EXPECT_TRUE(ros::service::call("live/apply_wrench", call));
+    return static_cast<bool>(call.response.success);
+  };
+  ASSERT_TRUE(setDouble("max_force", 20.0));
+  EXPECT_FALSE(accepted(30.0));
+  for (const double refused : {0.0, -5.0}) {
+    ASSERT_TRUE(setDouble("max_force", refused));
+    double value = 0.0;
+    EXPECT_TRUE(ros::param::get("live/node/live/max_force", value));
+    EXPECT_EQ(value, 20.0) << refused;
+    EXPECT_FALSE(accepted(30.0)) << refused;
+    EXPECT_TRUE(accepted(1.0)) << refused;
+  }
+  ASSERT_TRUE(setDouble("max_force", std::numeric_limits<double>::infinity()));  // .inf: no limit
+  EXPECT_TRUE(accepted(1e9));
+}
+
 TEST(LiveParameters, EveryNodeStartsAgainFromWhatItLeftOnTheParameterServer) {
   // A respawned node (or a second rosrun against the same master) reads its private namespace as the last run
   // left it, servers' write-backs included: the start-up parser must take it. Checked after live changes.
   ASSERT_TRUE(setDouble("linear_damping", 0.25, "listed/node"));
-  ASSERT_TRUE(setDouble("max_force", 0.0, "live/node"));  // 0: no limit, as dynamic_reconfigure writes it
+  ASSERT_TRUE(setDouble("max_force", 20.0, "live/node"));
+  ASSERT_TRUE(setDouble("max_force", std::numeric_limits<double>::infinity(), "live/node"));  // no limit
   for (const std::string node : {"live/node", "noisy/node", "listed/node"}) {
     XmlRpc::XmlRpcValue params;
     ASSERT_TRUE(ros::param::get(node, params)) << node;

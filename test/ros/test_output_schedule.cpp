@@ -59,10 +59,20 @@ TEST(OutputSchedule, ALateTickAndARewindStartTheGridAgain) {
   EXPECT_TRUE(schedule.due(110 * kMs, period));
 }
 
-TEST(OutputSchedule, APeriodChangedLiveTakesEffectFromTheNextDue) {
+// A live rate change counts from the last point served: a schedule that kept the next due time of the old
+// period would stay silent for 1000 s after a rate of 0.001 Hz was turned back up.
+TEST(OutputSchedule, APeriodChangedLiveCountsFromTheLastPointServed) {
   OutputSchedule schedule;
   EXPECT_TRUE(schedule.due(0, 100 * kMs));
-  EXPECT_FALSE(schedule.due(20 * kMs, 20 * kMs));  // next due stays at 100 ms, set by the old period
-  EXPECT_TRUE(schedule.due(100 * kMs, 20 * kMs));
-  EXPECT_TRUE(schedule.due(120 * kMs, 20 * kMs));
+  EXPECT_FALSE(schedule.due(10 * kMs, 20 * kMs));
+  EXPECT_TRUE(schedule.due(20 * kMs, 20 * kMs));
+  EXPECT_TRUE(schedule.due(40 * kMs, 20 * kMs));
+  OutputSchedule slowed;
+  const Nanoseconds kThousandSeconds = 1000000 * kMs;
+  EXPECT_TRUE(slowed.due(0, kThousandSeconds));
+  EXPECT_FALSE(slowed.due(10 * kMs, kThousandSeconds));
+  EXPECT_FALSE(slowed.due(40 * kMs, 50 * kMs));  // back to 20 Hz: due at 50 ms
+  EXPECT_TRUE(slowed.due(50 * kMs, 50 * kMs));
+  EXPECT_FALSE(slowed.due(60 * kMs, 50 * kMs));
+  EXPECT_TRUE(slowed.due(100 * kMs, 50 * kMs));
 }

@@ -35,8 +35,9 @@ class LiveParameters {
 
  private:
   void onChange(rigid_body_sim::RigidBodyConfig& requested, uint32_t level);
-  // A non-finite value in a request (NaN: the server's range clamp lets it through) becomes the value in force.
-  void keepFiniteValues(rigid_body_sim::RigidBodyConfig& requested);
+  // A NaN in a request (the server's range clamp lets it through) and a wrench limit not > 0 become the value
+  // in force.
+  void keepValidValues(rigid_body_sim::RigidBodyConfig& requested);
 
   NodeConfig& config_;
   rigid_body::World& world_;
