@@ -132,15 +132,25 @@ rigid_body::MassProperties readUrdfMassProperties(const XmlRpcValue& params, Bod
   if (config.link.empty()) fail("link", XmlRpcValue(std::string()), "must be set with ~urdf or ~robot_description");
   const std::size_t max_bytes = readMaxMeshBytes(params);
   std::string xml;
+  UrdfSource source;
   if (find(params, "urdf")) {
-    xml = readUrdfFile(readString(params, "urdf", "", "must be a URDF file path or package:// URI"), max_bytes);
+    source.key = "urdf";
+    source.value = readString(params, "urdf", "", "must be a URDF file path or package:// URI");
+    xml = readUrdfFile(source.value, source.folder);
   } else {
-    const std::string name = readString(params, "robot_description", "", "must name the parameter that holds the URDF");
-    if (name.empty() || !reader || !reader(name, xml)) {
+    source.key = "robot_description";
+    source.value = readString(params, "robot_description", "", "must name the parameter that holds the URDF");
+    if (source.value.empty() || !reader || !reader(source.value, xml)) {
       failAt(params, "robot_description", XmlRpcValue(), "must name a parameter that holds the URDF as text");
     }
   }
-  UrdfLink link = readUrdfLink(xml, config.link, max_bytes);
+  // The link's <collision> is the body's collision shape only with collision: true (or a struct without
+  // collision/shape): otherwise its mesh is never opened.
+  const XmlRpcValue* collision = find(params, "collision");
+  const bool with_collision =
+      collision && ((collision->getType() == XmlRpcValue::TypeBoolean && static_cast<bool>(*collision)) ||
+                    (collision->getType() == XmlRpcValue::TypeStruct && !find(params, "collision/shape")));
+  UrdfLink link = readUrdfLink(xml, config.link, source, with_collision, max_bytes);
   config.mass_source = MassSource::kUrdf;
   config.size.clear();
   config.X_BP = link.X_LB.inverse();

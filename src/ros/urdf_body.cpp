@@ -27,14 +27,41 @@ Eigen::Isometry3d toEigen(const urdf::Pose& pose) {
   return X;
 }
 
-std::string meshPath(const std::string& filename) {
-  const std::string file = "file://";
-  return filename.compare(0, file.size(), file) == 0 ? filename.substr(file.size()) : resolveMeshUri(filename);
+// A mesh filename of a URDF as a file path: package:// through the package's path, file:// stripped, and a
+// relative path against the URDF file's folder (as rviz and Gazebo read them), never the working directory.
+std::string meshPath(const std::string& filename, const UrdfSource& source, const std::string& link) {
+  const std::string file = "file://", package = "package://";
+  if (filename.compare(0, package.size(), package) == 0) {
+    try {
+      return resolveMeshUri(filename);
+    } catch (const ParameterError&) {
+      const std::string rest = filename.substr(package.size());
+      fail("link", XmlRpcValue(link), "its mesh '" + filename + "': package '" + rest.substr(0, rest.find('/')) +
+                                         "' not found (is its workspace sourced?)");
+    }
+  }
+  const std::string path = filename.compare(0, file.size(), file) == 0 ? filename.substr(file.size()) : filename;
+  if (std::filesystem::path(path).is_absolute()) return path;
+  if (source.folder.empty()) {
+    fail("link", XmlRpcValue(link), "its mesh '" + filename + "' is a relative path, and a description from ~" +
+                                        source.key + " has no folder to resolve it against: use package:// or an "
+                                        "absolute path");
+  }
+  return (std::filesystem::path(source.folder) / path).lexically_normal().string();
+}
+
+// A visual mesh's filename as a URI rviz resolves (a marker's mesh_resource): package:// and file:// as
+// written, a path made absolute against the URDF's folder and given file://.
+std::string visualMeshUri(const std::string& filename, const UrdfSource& source) {
+  if (filename.find("://") != std::string::npos) return filename;
+  std::filesystem::path path(filename);
+  if (path.is_relative() && !source.folder.empty()) path = std::filesystem::path(source.folder) / path;
+  return path.is_absolute() ? "file://" + path.lexically_normal().string() : filename;
 }
 
 // A URDF geometry as a collision shape; `what` names it in messages ("collision", "visual").
 rigid_body::CollisionShape shapeOf(const urdf::Geometry& geometry, const std::string& link, const std::string& what,
-                                   bool load_mesh, std::size_t max_mesh_bytes) {
+                                   const UrdfSource& source, bool load_mesh, std::size_t max_mesh_bytes) {
   rigid_body::CollisionShape shape;
   switch (geometry.type) {
     case urdf::Geometry::BOX: {
@@ -63,7 +90,9 @@ rigid_body::CollisionShape shapeOf(const urdf::Geometry& geometry, const std::st
       try {
         std::vector<std::string> warnings;
         shape.mesh = rigid_body::validatedClosedMesh(
-            rigid_body::transformed(rigid_body::loadMesh(meshPath(mesh.filename), max_mesh_bytes), mesh.scale.x), warnings);
+            rigid_body::transformed(rigid_body::loadMesh(meshPath(mesh.filename, source, link), max_mesh_bytes),
+                                    mesh.scale.x),
+            warnings);
       } catch (const rigid_body::MeshError& error) {
         fail("link", XmlRpcValue(link), "its " + what + " mesh '" + mesh.filename + "': " + error.what());
       }
@@ -75,17 +104,25 @@ rigid_body::CollisionShape shapeOf(const urdf::Geometry& geometry, const std::st
 
 }  // namespace
 
-std::string readUrdfFile(const std::string& uri, std::size_t max_bytes) {
-  const std::string path = meshPath(uri);
+std::string readUrdfFile(const std::string& uri, std::string& folder) {
+  std::string path;
+  const std::string file = "file://";
+  try {
+    path = uri.compare(0, file.size(), file) == 0 ? uri.substr(file.size()) : resolveMeshUri(uri);
+  } catch (const ParameterError&) {
+    fail("urdf", XmlRpcValue(uri), "names a package that is not found (is its workspace sourced?)");
+  }
   // A regular file of a bounded size, read to exactly that size: a FIFO or a device (/dev/zero) would never end.
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) {
     fail("urdf", XmlRpcValue(uri), "cannot open the file '" + path + "' (not a regular file, or missing)");
   }
   const std::uintmax_t size = std::filesystem::file_size(path, error);
-  if (error || size > max_bytes) {
-    fail("urdf", XmlRpcValue(uri), "is not a readable file of at most " + std::to_string(max_bytes) + " bytes");
+  if (error || size > kMaxUrdfBytes) {
+    fail("urdf", XmlRpcValue(uri), "is not a readable file of at most " + std::to_string(kMaxUrdfBytes) +
+                                       " bytes (16 MiB, the largest robot description read)");
   }
+  folder = std::filesystem::absolute(std::filesystem::path(path), error).parent_path().string();
   std::ifstream in(path, std::ios::binary);
   std::string text(static_cast<std::size_t>(size), '\0');
   if (!in || !in.read(&text[0], static_cast<std::streamsize>(size))) {
@@ -94,9 +131,15 @@ std::string readUrdfFile(const std::string& uri, std::size_t max_bytes) {
   return text;
 }
 
-UrdfLink readUrdfLink(const std::string& xml, const std::string& link_name, std::size_t max_mesh_bytes) {
+UrdfLink readUrdfLink(const std::string& xml, const std::string& link_name, const UrdfSource& source,
+                      bool with_collision, std::size_t max_mesh_bytes) {
+  if (xml.size() > kMaxUrdfBytes) {
+    fail(source.key, XmlRpcValue(source.value), "holds " + std::to_string(xml.size()) + " bytes, more than the " +
+                                                    std::to_string(kMaxUrdfBytes) +
+                                                    " (16 MiB) a robot description may have");
+  }
   urdf::Model model;
-  if (!model.initString(xml)) fail("urdf", XmlRpcValue(std::string("...")), "does not parse as a URDF robot description");
+  if (!model.initString(xml)) fail(source.key, XmlRpcValue(source.value), "does not parse as a URDF robot description");
   const urdf::LinkConstSharedPtr link = model.getLink(link_name);
   if (!link) fail("link", XmlRpcValue(link_name), "names no link of the robot description");
   if (!link->inertial) fail("link", XmlRpcValue(link_name), "has no <inertial>: mass and inertia are needed");
@@ -118,8 +161,8 @@ UrdfLink readUrdfLink(const std::string& xml, const std::string& link_name, std:
   if (!(out.X_LB.translation().norm() <= 1e6)) {
     fail("link", XmlRpcValue(link_name), "has an <inertial> origin beyond 1e6 m (or not finite)");
   }
-  if (link->collision && link->collision->geometry) {
-    out.collision = shapeOf(*link->collision->geometry, link_name, "collision", true, max_mesh_bytes);
+  if (with_collision && link->collision && link->collision->geometry) {
+    out.collision = shapeOf(*link->collision->geometry, link_name, "collision", source, true, max_mesh_bytes);
     out.collision->pose = toEigen(link->collision->origin);
     try {
       rigid_body::validateShape(*out.collision, false);
@@ -132,11 +175,11 @@ UrdfLink readUrdfLink(const std::string& xml, const std::string& link_name, std:
   if (link->visual && link->visual->geometry) {
     if (link->visual->geometry->type == urdf::Geometry::MESH) {
       const auto& mesh = static_cast<const urdf::Mesh&>(*link->visual->geometry);
-      out.visual_mesh = mesh.filename;
+      out.visual_mesh = visualMeshUri(mesh.filename, source);
       out.visual_mesh_scale = mesh.scale.x;
       out.X_LV = toEigen(link->visual->origin);
     } else {
-      out.visual = shapeOf(*link->visual->geometry, link_name, "visual", false, max_mesh_bytes);
+      out.visual = shapeOf(*link->visual->geometry, link_name, "visual", source, false, max_mesh_bytes);
       out.visual->pose = toEigen(link->visual->origin);
     }
   }

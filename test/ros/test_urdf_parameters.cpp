@@ -1,6 +1,11 @@
 // A body from a URDF link, read without a master.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 
@@ -8,6 +13,7 @@
 #include "rigid_body_sim/kinematics.hpp"
 #include "rigid_body_sim/ros/conversions.hpp"
 #include "rigid_body_sim/ros/parameters.hpp"
+#include "rigid_body_sim/ros/urdf_body.hpp"
 
 using parameter_test::errorOf;
 using parameter_test::list;
@@ -37,7 +43,9 @@ Eigen::Quaterniond fromRpy(double roll, double pitch, double yaw) {
 }  // namespace
 
 TEST(UrdfBody, TheLinksInertialGivesMassCentreAndInertiaAndTheLinkFrameIsPublished) {
-  const NodeConfig config = parseConfig(urdfBody("base_link"));
+  XmlRpcValue params = urdfBody("base_link");
+  params["collision"] = true;  // the link's <collision> is read for a body that collides
+  const NodeConfig config = parseConfig(params);
   const BodyConfig& body = config.bodies[0];
   EXPECT_EQ(body.body_frame, "base_link");  // the link's name
   EXPECT_EQ(body.model.mass.mass(), 2.0);
@@ -128,4 +136,126 @@ TEST(UrdfBody, RobotDescriptionNamesTheParameterThatHoldsTheXml) {
   const NodeConfig config = parseConfig(params, reader);
   ASSERT_TRUE(config.bodies[0].collision.has_value());
   EXPECT_EQ(config.bodies[0].collision->type, rigid_body::ShapeType::kBox);
+}
+
+namespace {
+
+// A URDF with one link whose <collision> and <visual> are the mesh `mesh` (as written in the file).
+std::string meshLinkUrdf(const std::string& mesh) {
+  return "<robot name='meshed'><link name='crate'><inertial><mass value='1.0'/>"
+         "<inertia ixx='0.1' ixy='0' ixz='0' iyy='0.1' iyz='0' izz='0.1'/></inertial>"
+         "<collision><geometry><mesh filename='" + mesh + "'/></geometry></collision>"
+         "<visual><geometry><mesh filename='" + mesh + "'/></geometry></visual></link></robot>";
+}
+
+// A fresh folder holding robot.urdf (naming meshes/box.obj relatively) and meshes/box.obj.
+std::string writeRobotFolder(bool with_mesh) {
+  char name[] = "/tmp/rigid_body_sim_urdf_XXXXXX";
+  const std::string folder = mkdtemp(name);
+  std::filesystem::create_directory(folder + "/meshes");
+  if (with_mesh) std::filesystem::copy_file(TEST_MESH_DIR "/box.obj", folder + "/meshes/box.obj");
+  std::ofstream(folder + "/robot.urdf") << meshLinkUrdf("meshes/box.obj");
+  return folder;
+}
+
+XmlRpcValue fromDescription(bool collision) {
+  XmlRpcValue params;
+  params["robot_description"] = std::string("/robot_description");
+  params["link"] = std::string("crate");
+  params["collision"] = collision;
+  return params;
+}
+
+constexpr std::size_t kHugePadding = rigid_body_ros::kMaxUrdfBytes;  // spaces: still a parseable URDF
+
+std::string errorWith(const XmlRpcValue& params, const std::string& xml) {
+  try {
+    parseConfig(params, [&xml](const std::string&, std::string& value) {
+      value = xml;
+      return true;
+    });
+  } catch (const rigid_body_ros::ParameterError& error) {
+    return error.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+// Relative mesh paths are the URDF file's folder's (as rviz and Gazebo read them): resolved against the
+// working directory, the test (run from /) would find no mesh.
+TEST(UrdfBody, RelativeMeshPathsResolveAgainstTheUrdfsFolderNotTheWorkingDirectory) {
+  const std::string folder = writeRobotFolder(true);
+  const std::filesystem::path working = std::filesystem::current_path();
+  std::filesystem::current_path("/");
+  XmlRpcValue params;
+  params["urdf"] = folder + "/robot.urdf";
+  params["link"] = std::string("crate");
+  params["collision"] = true;
+  NodeConfig config;
+  EXPECT_NO_THROW(config = parseConfig(params));
+  std::filesystem::current_path(working);
+  ASSERT_EQ(config.bodies.size(), 1u);
+  ASSERT_TRUE(config.bodies[0].collision.has_value());
+  EXPECT_EQ(config.bodies[0].collision->type, rigid_body::ShapeType::kMesh);
+  EXPECT_EQ(config.bodies[0].collision->mesh.triangles.size(), 12u);  // box.obj: 6 faces of 2 triangles
+  EXPECT_EQ(config.bodies[0].visual_mesh, "file://" + folder + "/meshes/box.obj");  // a URI rviz can open
+  std::filesystem::remove_all(folder);
+}
+
+// A collision mesh is opened only for a body that collides: a missing one stops only that body.
+TEST(UrdfBody, ACollisionMeshIsOpenedOnlyWhenTheBodyCollides) {
+  const std::string folder = writeRobotFolder(false);
+  XmlRpcValue params;
+  params["urdf"] = folder + "/robot.urdf";
+  params["link"] = std::string("crate");
+  params["collision"] = false;
+  EXPECT_EQ(errorOf(params), "");
+  params["collision"] = true;
+  const std::string error = errorOf(params);
+  EXPECT_NE(error.find("parameter ~link = 'crate': its collision mesh 'meshes/box.obj'"), std::string::npos) << error;
+  std::filesystem::remove_all(folder);
+}
+
+// Messages name the parameter the description came from: ~robot_description's text is not "~urdf".
+TEST(UrdfBody, ARobotDescriptionIsNamedInItsOwnMessagesAndBoundedBeforeItIsParsed) {
+  EXPECT_NE(errorWith(fromDescription(false), "<robot").find(
+                "parameter ~robot_description = '/robot_description': does not parse as a URDF"),
+            std::string::npos);
+  // More than 16 MiB is refused unparsed: the text here would parse, so a parser that ran would name no size.
+  std::string huge = meshLinkUrdf("package://rigid_body_sim/test/meshes/box.obj");
+  huge.insert(huge.find("<link"), kHugePadding, ' ');
+  const std::string error = errorWith(fromDescription(false), huge);
+  EXPECT_NE(error.find("parameter ~robot_description = '/robot_description': holds " + std::to_string(huge.size()) +
+                       " bytes, more than the 16777216"),
+            std::string::npos)
+      << error;
+  // At the bound it is read.
+  std::string at_bound = meshLinkUrdf("/nonexistent/box.obj");
+  at_bound.insert(at_bound.find("<link"), rigid_body_ros::kMaxUrdfBytes - at_bound.size(), ' ');
+  EXPECT_EQ(errorWith(fromDescription(false), at_bound), "");
+  // A relative mesh path has no folder to resolve against in a parameter.
+  EXPECT_NE(errorWith(fromDescription(true), meshLinkUrdf("meshes/box.obj"))
+                .find("its mesh 'meshes/box.obj' is a relative path, and a description from ~robot_description has no folder"),
+            std::string::npos);
+}
+
+TEST(UrdfBody, AUrdfFileIsBoundedAndAMissingPackageIsNotAMeshError) {
+  char name[] = "/tmp/rigid_body_sim_huge_XXXXXX.urdf";
+  const int fd = mkstemps(name, 5);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(ftruncate(fd, static_cast<off_t>(rigid_body_ros::kMaxUrdfBytes) + 1), 0);  // sparse: costs no disk
+  close(fd);
+  XmlRpcValue params = urdfBody("base_link");
+  params["urdf"] = std::string(name);
+  EXPECT_NE(errorOf(params).find("parameter ~urdf = '" + std::string(name) + "': is not a readable file of at most 16777216"),
+            std::string::npos)
+      << errorOf(params);
+  std::remove(name);
+  params["urdf"] = std::string("package://no_such_package_here/robot.urdf");
+  const std::string error = errorOf(params);
+  EXPECT_NE(error.find("parameter ~urdf = 'package://no_such_package_here/robot.urdf': names a package that is not found"),
+            std::string::npos)
+      << error;
+  EXPECT_EQ(error.find("~mesh"), std::string::npos) << error;
 }

@@ -24,12 +24,26 @@ struct UrdfLink {
   Eigen::Isometry3d X_LV = Eigen::Isometry3d::Identity();  ///< a mesh visual's pose in L
 };
 
-/// The link `link` of the URDF `xml`. Throws ParameterError naming ~link (or ~urdf for XML that does not
-/// parse): a missing link, a link without <inertial>, a non-physical inertia, an unusable geometry.
-/// `max_mesh_bytes` bounds a collision mesh file.
-UrdfLink readUrdfLink(const std::string& xml, const std::string& link, std::size_t max_mesh_bytes);
+/// The largest robot description read (a file or a parameter's text), checked before it is parsed: a URDF is
+/// text that names its meshes, and even large robots' are well under 1 MiB.
+constexpr std::size_t kMaxUrdfBytes = std::size_t{16} << 20;
 
-/// The text of a URDF file (a path or package:// URI), at most `max_bytes`. Throws ParameterError naming ~urdf.
-std::string readUrdfFile(const std::string& uri, std::size_t max_bytes);
+/// Where a robot description came from, to name it in messages and to resolve its relative mesh paths.
+struct UrdfSource {
+  std::string key;     ///< the parameter that gave it: "urdf" or "robot_description"
+  std::string value;   ///< that parameter's value (a file or package:// URI, or a parameter name)
+  std::string folder;  ///< the file's folder, against which relative mesh paths resolve; empty for a parameter
+};
+
+/// The link `link` of the URDF `xml`. Throws ParameterError naming ~link (or the source's parameter for XML
+/// that does not parse or is too large): a missing link, a link without <inertial>, a non-physical inertia,
+/// an unusable geometry. The <collision> (and its mesh file, at most `max_mesh_bytes`) is read only if
+/// `with_collision`: a body that does not collide never opens it.
+UrdfLink readUrdfLink(const std::string& xml, const std::string& link, const UrdfSource& source, bool with_collision,
+                      std::size_t max_mesh_bytes);
+
+/// The text of a URDF file (a path or package:// URI), at most kMaxUrdfBytes. Throws ParameterError naming
+/// ~urdf. `folder` is set to the file's folder.
+std::string readUrdfFile(const std::string& uri, std::string& folder);
 
 }  // namespace rigid_body_ros
