@@ -186,4 +186,53 @@ UrdfLink readUrdfLink(const std::string& xml, const std::string& link_name, cons
   return out;
 }
 
+// shape: urdf. The body frame is the link's inertial frame (centre of mass, its axes); the published frame is
+// the link frame, at X_BP = X_LB⁻¹.
+rigid_body::MassProperties readUrdfBody(const XmlRpcValue& params, BodyConfig& config, const ParameterReader& reader,
+                                        std::size_t max_bytes) {
+  for (const char* key : {"shape", "size", "mass", "inertia", "mesh", "scale", "density", "inertia_method", "samples",
+                          "principal_axes", "mesh_frame"}) {
+    if (find(params, key)) failAt(params, key, XmlRpcValue(), "is not a key of a body given by ~urdf or ~robot_description");
+  }
+  if (find(params, "urdf") && find(params, "robot_description")) {
+    failAt(params, "robot_description", XmlRpcValue(), "give ~urdf or ~robot_description, not both");
+  }
+  config.link = readString(params, "link", "", "must be the name of a link of the robot description");
+  if (config.link.empty()) fail("link", XmlRpcValue(std::string()), "must be set with ~urdf or ~robot_description");
+  std::string xml;
+  UrdfSource source;
+  if (find(params, "urdf")) {
+    source.key = "urdf";
+    source.value = readString(params, "urdf", "", "must be a URDF file path or package:// URI");
+    xml = readUrdfFile(source.value, source.folder);
+  } else {
+    source.key = "robot_description";
+    source.value = readString(params, "robot_description", "", "must name the parameter that holds the URDF");
+    if (source.value.empty() || !reader || !reader(source.value, xml)) {
+      failAt(params, "robot_description", XmlRpcValue(), "must name a parameter that holds the URDF as text");
+    }
+  }
+  // The link's <collision> is the body's collision shape only with collision: true (or a struct without
+  // collision/shape): otherwise its mesh is never opened.
+  const XmlRpcValue* collision = find(params, "collision");
+  const bool with_collision =
+      collision && ((collision->getType() == XmlRpcValue::TypeBoolean && static_cast<bool>(*collision)) ||
+                    (collision->getType() == XmlRpcValue::TypeStruct && !find(params, "collision/shape")));
+  UrdfLink link = readUrdfLink(xml, config.link, source, with_collision, max_bytes);
+  config.mass_source = MassSource::kUrdf;
+  config.size.clear();
+  config.X_BP = link.X_LB.inverse();
+  config.published_offset = !link.X_LB.isApprox(Eigen::Isometry3d::Identity(), 0.0);
+  config.urdf_collision_problem = link.collision_problem;
+  if (link.collision) {
+    config.urdf_collision = link.collision;
+    config.urdf_collision->pose = config.X_BP * link.collision->pose;  // X_BC = X_BL X_LC
+  }
+  config.visual = link.visual;
+  config.visual_mesh = link.visual_mesh;
+  config.visual_mesh_scale = link.visual_mesh_scale;
+  config.X_PV = link.X_LV;
+  return link.mass;
+}
+
 }  // namespace rigid_body_ros

@@ -9,6 +9,7 @@
 
 #include "rigid_body_sim/collision_shape.hpp"
 #include "rigid_body_sim/mass_properties.hpp"
+#include "rigid_body_sim/ros/parameters.hpp"
 
 namespace rigid_body_ros {
 
@@ -45,5 +46,11 @@ UrdfLink readUrdfLink(const std::string& xml, const std::string& link, const Urd
 /// The text of a URDF file (a path or package:// URI), at most kMaxUrdfBytes. Throws ParameterError naming
 /// ~urdf. `folder` is set to the file's folder.
 std::string readUrdfFile(const std::string& uri, std::string& folder);
+
+/// A body given by ~urdf or ~robot_description and ~link (the keys of one body in `params`): fills the
+/// link's frames, collision and visual into `config` and returns its mass properties. Keys of other body
+/// kinds (shape, mass, …) are refused; `reader` fetches a robot_description parameter's text.
+rigid_body::MassProperties readUrdfBody(const XmlRpc::XmlRpcValue& params, BodyConfig& config,
+                                        const ParameterReader& reader, std::size_t max_mesh_bytes);
 
 }  // namespace rigid_body_ros
