@@ -133,6 +133,7 @@ std::vector<rigid_body::CollisionShape> readEnvironment(const XmlRpcValue& param
       shape.type = shapeType(item, "type", "", true);
       shape.name = readString(item, "name", std::string(rigid_body::shapeTypeName(shape.type)) + std::to_string(i),
                               "must be a name for the shape");
+      if (shape.name.empty()) failAt(item, "name", XmlRpcValue(shape.name), "must be a non-empty name");
       if (!names.insert(shape.name).second) failAt(item, "name", XmlRpcValue(shape.name), "must be unique in ~environment");
       readMaterial(item, "", shape.material);
       if (shape.type == rigid_body::ShapeType::kPlane) {

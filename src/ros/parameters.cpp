@@ -226,6 +226,10 @@ BodyConfig parseBody(const XmlRpcValue& params, const NodeConfig& scene, const s
   if (!body.mesh_frame.empty()) {
     if (!body.hasShape(rigid_body::ShapeType::kMesh)) failAt(params, "mesh_frame", XmlRpcValue(body.mesh_frame), "is only for shape mesh");
     body.mesh_frame = readFrame(params, "mesh_frame", "");
+    // Its own tf frame, fixed in the body: one name for two frames would make tf's tree a loop.
+    if (body.mesh_frame == body.body_frame || body.mesh_frame == scene.world_frame) {
+      failAt(params, "mesh_frame", XmlRpcValue(body.mesh_frame), "must differ from body_frame and from world_frame");
+    }
   }
   if (const XmlRpcValue* initial = find(params, "initial")) collectUnknown(*initial, "initial/", kInitialNames, unknown);
   body.collision = readCollision(params, body);
@@ -369,6 +373,20 @@ std::vector<std::string> unknownNames(const XmlRpcValue& params, const std::vect
   return unknown;
 }
 
+// Contacts, markers and diagnostics name the other side of a contact by its name: a body and an
+// environment shape of one name would be told apart by nothing.
+void refuseBodyNamedLikeTheEnvironment(const NodeConfig& config) {
+  for (std::size_t i = 0; i < config.environment.size(); ++i) {
+    const std::string& shape = config.environment[i].name;
+    for (const BodyConfig& body : config.bodies) {
+      if (shape != body.name && shape != body.body_frame) continue;
+      fail("environment[" + std::to_string(i) + "]/name", XmlRpcValue(shape),
+           "is also the name (or body_frame) of a body: contacts and markers name both sides by it, so it must "
+           "be unique in the scene");
+    }
+  }
+}
+
 }  // namespace
 
 NodeConfig parseConfig(const XmlRpcValue& params, const ParameterReader& reader) {
@@ -390,6 +408,7 @@ NodeConfig parseConfig(const XmlRpcValue& params, const ParameterReader& reader)
   readOutputs(params, config);
   readNoise(params, config.noise);
   config.environment = readEnvironment(params, rigid_body::kDefaultMaxMeshBytes);
+  refuseBodyNamedLikeTheEnvironment(config);
   config.unknown_parameters = unknownNames(params, unknown_in_bodies);
   return config;
 }

@@ -177,6 +177,34 @@ TEST(ContactParameters, EachInvalidContactValueNamesItsParameter) {
   }
 }
 
+// Contacts name both sides: an empty name names nothing, and a body and a shape of one name are the same
+// to a reader of contacts. Refused in the flat form (body_frame) and in a list (name and body_frame).
+TEST(ContactParameters, EnvironmentNamesAreNonEmptyAndNoBodysName) {
+  XmlRpcValue empty = shapeItem("plane");
+  empty["name"] = std::string("");
+  EXPECT_NE(errorOf(environmentOf(empty)).find("parameter ~environment[0]/name = '': must be a non-empty name"),
+            std::string::npos)
+      << errorOf(environmentOf(empty));
+  XmlRpcValue flat = environmentOf(shapeItem("plane"));
+  flat["body_frame"] = std::string("plane0");  // the plane's default name
+  EXPECT_NE(errorOf(flat).find("parameter ~environment[0]/name = 'plane0': is also the name (or body_frame) of a body"),
+            std::string::npos)
+      << errorOf(flat);
+  XmlRpcValue listed = environmentOf(shapeItem("plane"));
+  listed["environment"][0]["name"] = std::string("crate");
+  listed["bodies"][0]["name"] = std::string("crate");
+  listed["bodies"][1]["name"] = std::string("other");
+  listed["bodies"][1]["initial"]["position"] = list({2.0, 0.0, 0.0});
+  EXPECT_NE(errorOf(listed).find("parameter ~environment[0]/name = 'crate': is also the name"), std::string::npos)
+      << errorOf(listed);
+  listed["bodies"][0]["name"] = std::string("box");
+  listed["bodies"][0]["body_frame"] = std::string("crate");
+  EXPECT_NE(errorOf(listed).find("parameter ~environment[0]/name = 'crate': is also the name"), std::string::npos)
+      << errorOf(listed);
+  listed["environment"][0]["name"] = std::string("floor");
+  EXPECT_EQ(errorOf(listed), "");
+}
+
 TEST(ContactParameters, AMeshBodyCollidesAsItsHullInTheBodyFrame) {
   XmlRpcValue params;
   params["shape"] = std::string("mesh");

@@ -308,6 +308,16 @@ TEST(Parameters, MeshProblemsNameTheParameter) {
   XmlRpcValue frame;
   frame["mesh_frame"] = std::string("visual");
   EXPECT_NE(errorOf(frame).find("is only for shape mesh"), std::string::npos);
+  // The mesh's own frame under the body frame: one name for both (or the world's) would make tf a loop.
+  XmlRpcValue same = meshParams("/box.obj");
+  same["body_frame"] = std::string("crate");
+  same["mesh_frame"] = std::string("crate");
+  EXPECT_NE(errorOf(same).find("parameter ~mesh_frame = 'crate': must differ from body_frame"), std::string::npos)
+      << errorOf(same);
+  same["mesh_frame"] = std::string("world");
+  EXPECT_NE(errorOf(same).find("parameter ~mesh_frame = 'world': must differ"), std::string::npos) << errorOf(same);
+  same["mesh_frame"] = std::string("crate_mesh");
+  EXPECT_EQ(errorOf(same), "");
   // An inside-out mesh is repaired, with a warning for the log.
   EXPECT_EQ(parseConfig(meshParams("/inside_out_box.obj")).bodies[0].mesh_warnings.size(), 1u);
 }
