@@ -14,7 +14,7 @@ DEBIAN_PACKAGES=(
   libtf2-ros-dev libtf2-msgs-dev libtf2-eigen-dev libtf2-geometry-msgs-dev
   ros-nav-msgs ros-geometry-msgs ros-std-srvs libstd-srvs-dev libnav-msgs-dev libgeometry-msgs-dev
   python3-rostest librostest-dev python3-rostopic python3-roslaunch
-  python3-nav-msgs python3-geometry-msgs python3-std-msgs python3-std-srvs python3-tf2-msgs python3-tf2-ros
+  python3-rospy python3-rosunit python3-nav-msgs python3-geometry-msgs python3-std-msgs python3-std-srvs python3-tf2-msgs python3-tf2-ros
   libeigen3-dev libgtest-dev libboost-math-dev libbenchmark-dev libbullet-dev pkg-config
   libvisualization-msgs-dev ros-visualization-msgs python3-visualization-msgs
   libsensor-msgs-dev ros-sensor-msgs python3-sensor-msgs
@@ -51,6 +51,13 @@ link_package() {
     [ "$(cd "$entry" 2>/dev/null && pwd -P)" = "$(cd "$WORKSPACE" && pwd -P)" ] && continue
     ln -sfn "$entry" "$package/$(basename "$entry")"
   done
+  # The example downstream packages build and test beside it, as a user's own would (catkin does not look
+  # for packages inside a package's folder).
+  find "$WORKSPACE/src" -maxdepth 1 -type l ! -exec test -e {} \; -delete
+  for entry in "$PACKAGE_DIR"/examples/*/; do
+    [ -f "$entry/package.xml" ] && ln -sfn "${entry%/}" "$WORKSPACE/src/$(basename "$entry")"
+  done
+  return 0
 }
 
 build_workspace() {

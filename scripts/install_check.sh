@@ -14,7 +14,7 @@ check() {
   (cd "$WORKSPACE" && catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release \
      -DCMAKE_INSTALL_PREFIX="$prefix" install) >"$log" 2>&1 || { echo "catkin_make install failed"; return 1; }
   for file in lib/rigid_body_sim/rigid_body_node lib/rigid_body_sim/accuracy_report share/rigid_body_sim/launch/rigid_body.launch \
-              share/rigid_body_sim/launch/rviz.launch share/rigid_body_sim/config/falling_box.yaml \
+              share/rigid_body_sim/launch/rviz.launch share/rigid_body_sim/launch/test_fixture.launch share/rigid_body_sim/config/falling_box.yaml \
               share/rigid_body_sim/rviz/rigid_body.rviz share/rigid_body_sim/meshes/l_bracket.obj; do
     [ -e "$prefix/$file" ] || { echo "not installed: $file"; return 1; }
   done
@@ -27,6 +27,9 @@ check() {
     trap 'kill \$master \$node 2>/dev/null; wait 2>/dev/null' EXIT
     sleep 3
     [ \"\$(rospack find rigid_body_sim)\" = '$prefix/share/rigid_body_sim' ] || { echo 'rospack finds another copy'; exit 1; }
+    # The test kit and the messages from the install space's Python path, not the source tree.
+    /usr/bin/python3 -c 'import rigid_body_sim.testing, rigid_body_sim.srv, sys; sys.exit(not rigid_body_sim.testing.__file__.startswith(\"$prefix\"))' \
+      || { echo 'rigid_body_sim.testing is not importable from the install space'; exit 1; }
     roslaunch rigid_body_sim rigid_body.launch config:='$prefix/share/rigid_body_sim/config/falling_box.yaml' >/dev/null 2>&1 & node=\$!
     timeout 20 rostopic echo -n 1 /odom/header/frame_id | grep -q world
   " >>"$log" 2>&1 || { echo "the installed node published no odometry (log: $log)"; return 1; }

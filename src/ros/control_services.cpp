@@ -182,6 +182,8 @@ bool ControlServices::onGetState(std::size_t body, rigid_body_sim::GetState::Req
   tf2::toMsg(Eigen::Vector3d(motion.R_WB.transpose() * motion.w_WB_W), response.twist_body.angular);
   response.total_steps = world_.scene().integratedSteps(body);
   response.paused = world_.paused();
+  response.wrench_messages = wrench_input_.messages(body);
+  response.wrench_messages_refused = wrench_input_.refusedMessages(body);
   return true;
 }
 

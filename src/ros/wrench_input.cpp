@@ -38,7 +38,12 @@ std::string withoutLeadingSlash(const std::string& frame) {
 
 WrenchInput::WrenchInput(ros::NodeHandle& nh, const NodeConfig& config, rigid_body::World& world,
                          std::function<rigid_body::Nanoseconds()> now)
-    : config_(config), world_(world), now_(std::move(now)), foreign_transforms_(tf_buffer_) {
+    : config_(config),
+      world_(world),
+      now_(std::move(now)),
+      foreign_transforms_(tf_buffer_),
+      messages_(config.bodies.size(), 0),
+      refused_messages_(config.bodies.size(), 0) {
   for (std::size_t body = 0; body < config.bodies.size(); ++body) body_by_frame_[config.bodies[body].body_frame] = body;
   if (!config.publish.per_body_topics) {
     // One subscriber for the whole scene; the bodies found by name.
@@ -191,22 +196,32 @@ bool WrenchInput::convert(std::size_t body, const geometry_msgs::Wrench& wrench,
   return true;
 }
 
-void WrenchInput::submit(std::size_t body, const ConvertedWrench& converted) {
+bool WrenchInput::submit(std::size_t body, const ConvertedWrench& converted) {
   const rigid_body::CommandReply reply =
       world_.setWrench(body, converted.wrench, now_(), converted.has_point ? &converted.p_WQ : nullptr);
   if (!reply.accepted) {
     ++rejections_.refused_by_core;
     ROS_WARN_THROTTLE(kWarningPeriod, "rigid_body_node: wrench refused: %s", reply.message.c_str());
   }
+  return reply.accepted;
+}
+
+void WrenchInput::countMessage(std::size_t body, bool accepted) {
+  ++messages_[body];
+  if (!accepted) ++refused_messages_[body];
+}
+
+bool WrenchInput::handleStamped(std::size_t body, const geometry_msgs::WrenchStamped& message) {
+  // The wrench acts from its arrival; its stamp only chooses the transform of a foreign frame (a stamp far in
+  // the past or the future, as `rostopic pub` gives under sim time, neither delays nor drops it).
+  if (!accept(message.wrench)) return false;
+  ConvertedWrench converted;
+  if (!convert(body, message.wrench, message.header.frame_id, message.header.stamp, nullptr, converted)) return false;
+  return submit(body, converted);
 }
 
 void WrenchInput::onWrench(std::size_t body, const geometry_msgs::WrenchStamped& message) {
-  // The wrench acts from its arrival; its stamp only chooses the transform of a foreign frame (a stamp far in
-  // the past or the future, as `rostopic pub` gives under sim time, neither delays nor drops it).
-  if (!accept(message.wrench)) return;
-  ConvertedWrench converted;
-  if (!convert(body, message.wrench, message.header.frame_id, message.header.stamp, nullptr, converted)) return;
-  submit(body, converted);
+  countMessage(body, handleStamped(body, message));
 }
 
 void WrenchInput::onBodyWrenches(const rigid_body_sim::BodyWrenches& message) {
@@ -229,16 +244,20 @@ void WrenchInput::onBodyWrenches(const rigid_body_sim::BodyWrenches& message) {
                         item.body.c_str(), static_cast<unsigned long>(rejections_.unknown_body));
       continue;
     }
-    onWrench(found->second, item.wrench);
+    onWrench(found->second, item.wrench);  // counted as its body's message
   }
 }
 
-void WrenchInput::onWrenchUnstamped(std::size_t body, const geometry_msgs::Wrench& message) {
+bool WrenchInput::handleUnstamped(std::size_t body, const geometry_msgs::Wrench& message) {
   // wrench_unstamped: world axes about the centre of mass (a drop-in for gazebo_ros_force users).
-  if (!accept(message)) return;
+  if (!accept(message)) return false;
   ConvertedWrench converted;
   converted.wrench.world = toWrench(message);
-  submit(body, converted);
+  return submit(body, converted);
+}
+
+void WrenchInput::onWrenchUnstamped(std::size_t body, const geometry_msgs::Wrench& message) {
+  countMessage(body, handleUnstamped(body, message));
 }
 
 }  // namespace rigid_body_ros

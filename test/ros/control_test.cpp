@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <geometry_msgs/Wrench.h>
 #include <rosgraph_msgs/Clock.h>
 #include <std_srvs/Empty.h>
 #include <std_srvs/Trigger.h>
@@ -179,6 +180,43 @@ TEST_F(Control, ABodyFrameForceAtAPointOnABodyTurnedAboutXActsInBodyAxes) {
   EXPECT_NEAR(got.twist_world.linear.y, -1.0 * 0.01 / kMass, 1e-6);
   EXPECT_NEAR(got.twist_world.linear.z, 0.0, 1e-12);
   call<std_srvs::Empty>("clear_wrenches");
+}
+
+TEST_F(Control, GetStateCountsWrenchMessagesSoATestWaitsInsteadOfSleeping) {
+  // The handshake of rigid_body_sim.testing: once get_state has counted a message, the node holds it and it
+  // acts from the next step. A refused message counts too (else a test would wait for it forever), and does
+  // not clear the wrench that was acting; the latest accepted message of either topic wins.
+  resetTime();
+  pause();
+  ros::Publisher stamped = advertiseWrench(nh_, "lock");
+  ros::Publisher unstamped = nh_.advertise<geometry_msgs::Wrench>("lock/wrench_unstamped", 10);
+  ASSERT_TRUE(waitUntil([&] { return unstamped.getNumSubscribers() > 0; }));
+  const auto start = state();
+  auto counted = [&](std::uint64_t messages, std::uint64_t refused) {
+    return waitUntil([&] {
+      const auto now = state();
+      return now.wrench_messages == start.wrench_messages + messages &&
+             now.wrench_messages_refused == start.wrench_messages_refused + refused;
+    });
+  };
+  stamped.publish(wrench("world", 1.0, 0.0, 0.0));
+  ASSERT_TRUE(counted(1, 0));
+  stamped.publish(wrench("world", std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0));
+  ASSERT_TRUE(counted(2, 1));
+  stamped.publish(wrench("no_such_frame", 5.0, 0.0, 0.0));  // tf2 cannot resolve it: refused
+  ASSERT_TRUE(counted(3, 2));
+  ASSERT_TRUE(step(100).success);
+  EXPECT_NEAR(state().twist_world.linear.x, 1.0 * 0.1 / kMass, 1e-12);  // from the first step on: v = F t / M
+  geometry_msgs::Wrench sideways;
+  sideways.force.y = 2.0;
+  unstamped.publish(sideways);
+  ASSERT_TRUE(counted(4, 2));
+  ASSERT_TRUE(step(100).success);
+  const auto end = state();
+  EXPECT_NEAR(end.twist_world.linear.x, 1.0 * 0.1 / kMass, 1e-12);  // replaced, not summed
+  EXPECT_NEAR(end.twist_world.linear.y, 2.0 * 0.1 / kMass, 1e-12);
+  unstamped.publish(geometry_msgs::Wrench());
+  ASSERT_TRUE(counted(5, 2));
 }
 
 TEST_F(Control, SetStateAndGetStateRoundTripAndBadStatesAreRefused) {

@@ -66,13 +66,21 @@ class WrenchInput {
                const Eigen::Vector3d* point, ConvertedWrench& out);
 
   const WrenchRejections& rejections() const { return rejections_; }
+  /// Wrench messages delivered to `body` on its topics since start-up, and how many of them were refused:
+  /// the handshake a lockstep test waits on (GetState.srv).
+  std::uint64_t messages(std::size_t body) const { return messages_[body]; }
+  std::uint64_t refusedMessages(std::size_t body) const { return refused_messages_[body]; }
 
  private:
   void onWrench(std::size_t body, const geometry_msgs::WrenchStamped& message);
   void onWrenchUnstamped(std::size_t body, const geometry_msgs::Wrench& message);
+  /// Accepts, converts and submits one message's wrench; false if any of those refused it.
+  bool handleStamped(std::size_t body, const geometry_msgs::WrenchStamped& message);
+  bool handleUnstamped(std::size_t body, const geometry_msgs::Wrench& message);
+  void countMessage(std::size_t body, bool accepted);
   /// bodies/wrench (publish/per_body_topics: false): each item as if on its body's own wrench topic.
   void onBodyWrenches(const rigid_body_sim::BodyWrenches& message);
-  void submit(std::size_t body, const ConvertedWrench& converted);
+  bool submit(std::size_t body, const ConvertedWrench& converted);
   void warnUnknownFrame(const std::string& frame, const std::string& error);
   /// The first of this node's bodies met going up the tf tree from `frame` (`frame` itself included): the
   /// body it is attached to, if any.
@@ -93,6 +101,8 @@ class WrenchInput {
   std::vector<ros::Subscriber> subscribers_;
   std::map<std::string, ros::WallTime> last_frame_warning_;  ///< per unknown frame (bounded)
   std::unordered_map<std::string, std::size_t> body_by_name_;  ///< for bodies/wrench
+  std::vector<std::uint64_t> messages_;          ///< per body: wrench messages delivered
+  std::vector<std::uint64_t> refused_messages_;  ///< per body: of those, refused
 };
 
 }  // namespace rigid_body_ros
