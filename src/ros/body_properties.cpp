@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 
 #include "rigid_body_sim/collision_shape.hpp"
+#include "rigid_body_sim/number_format.hpp"
 #include "rigid_body_sim/shape_registry.hpp"
 
 namespace rigid_body_ros {
@@ -34,6 +35,15 @@ void fillProperties(const BodyConfig& body, const std::string& integrator, const
   response.wrench_input = body.wrench_input;
   response.integrator = integrator;
   response.step_terms = rigid_body::describeTerms(terms);
+}
+
+std::string describeProperties(const rigid_body_sim::GetProperties::Response& properties) {
+  auto number = [](double value) { return rigid_body::formatNumber(value, 6); };
+  const auto& moments = properties.principal_moments;
+  const auto& c = properties.center_of_mass;
+  return "mass " + number(properties.mass) + " kg, principal moments [" + number(moments[0]) + ", " +
+         number(moments[1]) + ", " + number(moments[2]) + "] kg m^2, centre of mass (" + number(c.x) + ", " +
+         number(c.y) + ", " + number(c.z) + ") m in the published frame, shape " + properties.shape;
 }
 
 }  // namespace rigid_body_ros

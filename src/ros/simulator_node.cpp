@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "rigid_body_sim/integrators.hpp"
+#include "rigid_body_sim/ros/body_properties.hpp"
 #include "rigid_body_sim/ros/time_conversion.hpp"
 
 namespace rigid_body_ros {
@@ -86,8 +88,12 @@ void SimulatorNode::start(const ros::Time& start_time) {
   for (std::size_t body = 0; body < config_.bodies.size(); ++body) {
     const BodyConfig& config = config_.bodies[body];
     // Once, at start-up: what this body's step evaluates (the rest of Ẏ is left out: see StepTerms).
-    ROS_INFO("rigid_body_node: body %s (%s): step assembled from %s", config.name.empty() ? "(flat)" : config.name.c_str(),
-             config.body_frame.c_str(), describeBodyStep(world_.scene(), body, config_).c_str());
+    rigid_body_sim::GetProperties::Response properties;
+    fillProperties(config, rigid_body::integratorName(world_.scene().integratorType()), world_.scene().terms(body),
+                   properties);
+    ROS_INFO("rigid_body_node: body %s (%s): %s; step assembled from %s",
+             config.name.empty() ? "(flat)" : config.name.c_str(), config.body_frame.c_str(),
+             describeProperties(properties).c_str(), describeBodyStep(world_.scene(), body, config_).c_str());
     if (config.mesh_path.empty()) continue;
     const Eigen::Vector3d& c = config.X_MB.translation();
     const Eigen::Quaterniond q_MB(config.X_MB.linear());

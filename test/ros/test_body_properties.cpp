@@ -100,3 +100,24 @@ TEST(BodyProperties, ABodyGivenByItsInertiaHasNoShapeAndNoContact) {
   EXPECT_FALSE(r.wrench_input);
   EXPECT_EQ(inertiaOf(r)(0, 1), 0.1);
 }
+
+TEST(BodyProperties, TheStartUpLineSaysMassPrincipalMomentsAndCentre) {
+  // A 3 kg box 0.4 × 0.2 × 0.1 m: principal moments m/12 (b² + c², a² + c², a² + b²), ascending.
+  XmlRpcValue params;
+  params["mass"] = 3.0;
+  params["size"] = parameter_test::list({0.4, 0.2, 0.1});
+  const std::string line = rigid_body_ros::describeProperties(propertiesOf(params));
+  EXPECT_NE(line.find("mass 3 kg"), std::string::npos) << line;
+  EXPECT_NE(line.find("principal moments [0.0125, 0.0425, 0.05] kg m^2"), std::string::npos) << line;
+  EXPECT_NE(line.find("centre of mass (0, 0, 0) m"), std::string::npos) << line;
+  EXPECT_NE(line.find("shape box"), std::string::npos) << line;
+  // A URDF link (test/urdf/offset_link.urdf): 2 kg, its centre of mass at (0.1, −0.05, 0.02) in the link frame.
+  XmlRpcValue urdf;
+  urdf["urdf"] = std::string(TEST_URDF_DIR "/offset_link.urdf");
+  urdf["link"] = std::string("base_link");
+  const std::string link_line = rigid_body_ros::describeProperties(propertiesOf(urdf));
+  EXPECT_NE(link_line.find("mass 2 kg"), std::string::npos) << link_line;
+  EXPECT_NE(link_line.find("centre of mass (0.1, -0.05, 0.02) m"), std::string::npos) << link_line;
+  EXPECT_NE(link_line.find("shape urdf"), std::string::npos) << link_line;
+  EXPECT_EQ(line.find("nan"), std::string::npos);
+}

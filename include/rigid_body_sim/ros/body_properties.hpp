@@ -15,4 +15,8 @@ namespace rigid_body_ros {
 void fillProperties(const BodyConfig& body, const std::string& integrator, const rigid_body::StepTerms& terms,
                     rigid_body_sim::GetProperties::Response& response);
 
+/// One line for the start-up log (a user loading a URDF link sees what it read): "mass M kg, principal
+/// moments [I1, I2, I3] kg m^2, centre of mass (x, y, z) m in the published frame, shape S" (6 digits).
+std::string describeProperties(const rigid_body_sim::GetProperties::Response& properties);
+
 }  // namespace rigid_body_ros
