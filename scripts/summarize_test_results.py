@@ -4,7 +4,7 @@
 Counts every <testcase> of the gtest binaries (gtest-*.xml) and of the tests inside rostests
 (rosunit-*.xml). A rostest wrapper (rostest-*.xml) holds one case that passes when its test process ran to
 the end; it is counted only when it failed (crash, time-limit, no results), so no test is counted twice.
-Prints the failed cases and, last, the line "N passed, N failed[, N skipped]". Exit 1 on any failure or
+Prints the failed cases with the start of their messages and, last, the line "N passed, N failed[, N skipped]". Exit 1 on any failure or
 when nothing ran.
 """
 import glob
@@ -13,12 +13,21 @@ import sys
 import xml.etree.ElementTree as ElementTree
 
 
+def _first_lines(text, count=6):
+    """The start of a failure's message: enough to see which assertion, without a page of output."""
+    lines = text.strip().splitlines()
+    return "\n    ".join(lines[:count]) + ("\n    ..." if len(lines) > count else "")
+
+
 def cases(path):
     root = ElementTree.parse(path).getroot()
     for case in root.iter("testcase"):
         name = "%s.%s" % (case.get("classname", ""), case.get("name", ""))
-        if case.find("failure") is not None or case.find("error") is not None:
-            yield name, "failed"
+        problem = case.find("failure")
+        if problem is None:
+            problem = case.find("error")
+        if problem is not None:
+            yield name, "failed: " + _first_lines(problem.get("message") or problem.text or "")
         elif case.find("skipped") is not None or case.get("status") == "notrun":
             yield name, "skipped"
         else:
@@ -34,14 +43,17 @@ def main(folder):
         try:
             results = list(cases(path))
         except ElementTree.ParseError as error:
-            results = [(os.path.basename(path), "failed")]
+            results = [(os.path.basename(path), "failed: unreadable")]
             print("unreadable result file %s: %s" % (path, error))
         for name, outcome in results:
             if wrapper and outcome == "passed":
                 continue
+            message = ""
+            if outcome.startswith("failed"):
+                outcome, message = "failed", outcome[len("failed: "):]
             counts[outcome] += 1
             if outcome == "failed":
-                failed.append("%s (%s)" % (name, os.path.basename(path)))
+                failed.append("%s (%s)%s" % (name, os.path.basename(path), "\n    " + message if message else ""))
     for name in failed:
         print("FAILED: " + name)
     line = "%d passed, %d failed" % (counts["passed"], counts["failed"])
