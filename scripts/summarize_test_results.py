@@ -27,11 +27,11 @@ def cases(path):
         if problem is None:
             problem = case.find("error")
         if problem is not None:
-            yield name, "failed: " + _first_lines(problem.get("message") or problem.text or "")
+            yield name, "failed", _first_lines(problem.get("message") or problem.text or "")
         elif case.find("skipped") is not None or case.get("status") == "notrun":
-            yield name, "skipped"
+            yield name, "skipped", ""
         else:
-            yield name, "passed"
+            yield name, "passed", ""
 
 
 def main(folder):
@@ -43,14 +43,11 @@ def main(folder):
         try:
             results = list(cases(path))
         except ElementTree.ParseError as error:
-            results = [(os.path.basename(path), "failed: unreadable")]
+            results = [(os.path.basename(path), "failed", "unreadable")]
             print("unreadable result file %s: %s" % (path, error))
-        for name, outcome in results:
+        for name, outcome, message in results:
             if wrapper and outcome == "passed":
                 continue
-            message = ""
-            if outcome.startswith("failed"):
-                outcome, message = "failed", outcome[len("failed: "):]
             counts[outcome] += 1
             if outcome == "failed":
                 failed.append("%s (%s)%s" % (name, os.path.basename(path), "\n    " + message if message else ""))

@@ -12,6 +12,7 @@ steps it. Every wait here is on an event the node reports, never on a clock:
 
 Timeouts are wall time and only guard against a node that never answers; a test never depends on them.
 """
+import collections
 import math
 import time
 import xmlrpc.client
@@ -46,7 +47,7 @@ class _Collector:
     """Keeps the messages of one topic with their stamps, so a wait can look for one stamp."""
 
     def __init__(self, topic, message_class):
-        self.messages = []
+        self.messages = collections.deque(maxlen=1000)  # the newest; a wait looks for the latest stamp
         self.subscriber = rospy.Subscriber(topic, message_class, self.messages.append, queue_size=1000)
 
     def stamped(self, stamp):
@@ -69,6 +70,7 @@ class Simulator:
         self.timeout = timeout
         self._collectors = {}
         self._wrench_publishers = {}
+        self._proxies = {}  # by resolved name: waited for once, then reused (a loop calls them per chunk)
 
     # Names ---------------------------------------------------------------------------------------------
     def name(self, name, body=None):
@@ -77,16 +79,23 @@ class Simulator:
 
     def _service(self, name, service_class, body=None):
         resolved = self.name(name, body)
-        try:
-            rospy.wait_for_service(resolved, timeout=self.timeout)
-        except rospy.ROSException:
-            raise SimulatorError("no service %s after %g s: is the simulator running (test_fixture.launch), and "
-                                 "does the body exist with publish/body_services on?" % (resolved, self.timeout))
-        return rospy.ServiceProxy(resolved, service_class)
+        proxy = self._proxies.get(resolved)
+        if proxy is None:
+            try:
+                rospy.wait_for_service(resolved, timeout=self.timeout)
+            except rospy.ROSException:
+                raise SimulatorError("no service %s after %g s: is the simulator running (test_fixture.launch), "
+                                     "and does the body exist with publish/body_services on?" % (resolved, self.timeout))
+            proxy = self._proxies[resolved] = rospy.ServiceProxy(resolved, service_class)
+        return proxy
 
-    def _wait(self, condition, what):
+    def _wait(self, poll, what):
+        """The first true value `poll()` returns, looked at every millisecond up to the timeout."""
         deadline = time.monotonic() + self.timeout
-        while not condition():
+        while True:
+            value = poll()
+            if value:
+                return value
             if time.monotonic() > deadline or rospy.is_shutdown():
                 raise SimulatorError("%s: not within %g s" % (what, self.timeout))
             time.sleep(0.001)
@@ -164,14 +173,12 @@ class Simulator:
         """Returns the body's state once the node has received `count` wrench messages more than it had in
         the state `since` (default: now)."""
         start = (since or self.state(body)).wrench_messages
-        holder = {}
 
         def arrived():
-            holder["state"] = self.state(body)
-            return holder["state"].wrench_messages >= start + count
+            state = self.state(body)
+            return state if state.wrench_messages >= start + count else None
 
-        self._wait(arrived, "%d wrench message(s) on %s" % (count, self.name("wrench", body)))
-        return holder["state"]
+        return self._wait(arrived, "%d wrench message(s) on %s" % (count, self.name("wrench", body)))
 
     # Outputs -------------------------------------------------------------------------------------------
     def _collector(self, topic, message_class, body=None):
@@ -188,21 +195,14 @@ class Simulator:
         of each chunk (len = steps // every): a trajectory with one sample per chunk, stamped on the step
         grid. A topic thinned by its own rate (publish/odom_rate) has no message after some chunks: step to
         its grid then."""
-        if every < 1 or steps % every:
-            raise ValueError("steps (%d) must be a whole number of chunks of every (%d) >= 1" % (steps, every))
+        chunks = _chunks(steps, every)
         collector = self._collector(topic, message_class, body)
         samples = []
-        for _ in range(steps // every):
+        for _ in range(chunks):
             self.step(every)
             stamp = self.state(body).stamp
-            holder = {}
-
-            def published():
-                holder["message"] = collector.stamped(stamp)
-                return holder["message"] is not None
-
-            self._wait(published, "a message on %s stamped %s" % (collector.subscriber.name, stamp.to_sec()))
-            samples.append(holder["message"])
+            samples.append(self._wait(lambda: collector.stamped(stamp),
+                                      "a message on %s stamped %s" % (collector.subscriber.name, stamp.to_sec())))
         return samples
 
     # A controller in another process -------------------------------------------------------------------
@@ -224,16 +224,22 @@ class Simulator:
         chunk waits until the controller's reply to the odometry of that chunk is held by the node, so that it
         acts from the next chunk: a closed loop with one output period of delay, the same on every run.
         Returns the body's state after each chunk."""
-        if every < 1 or steps % every:
-            raise ValueError("steps (%d) must be a whole number of chunks of every (%d) >= 1" % (steps, every))
+        chunks = _chunks(steps, every)
         self.wait_for_controller(body)
         states = []
         before = self.state(body)
-        for _ in range(steps // every):
+        for _ in range(chunks):
             self.step(every)
             before = self.wait_for_wrenches(1, since=before, body=body)
             states.append(before)
         return states
+
+
+def _chunks(steps, every):
+    """How many chunks of `every` steps make `steps`; ValueError unless a whole number of them."""
+    if every < 1 or steps % every:
+        raise ValueError("steps (%d) must be a whole number of chunks of every (%d) >= 1" % (steps, every))
+    return steps // every
 
 
 def _publisher_of(topic):
