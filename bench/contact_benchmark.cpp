@@ -1,11 +1,12 @@
 // Cost of contact per body and step (Google Benchmark): N boxes resting on the ground apart from each other,
 // N boxes in stacks of 10 (every box touches two others or the ground), and N spheres in the air far apart
-// (the broad phase alone: no pair overlaps). Not a test: run by scripts/benchmark.sh; numbers in
+// (the broad phase alone: no pair overlaps), all awake (sleeping off); and the stacks once asleep. Not a test: run by scripts/benchmark.sh; numbers in
 // docs/performance.md. One iteration is 10 steps of 1 ms (the node's default tick). Scenes without colliders
 // are scene_benchmark's: their cost with contact compiled in is measured there.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include "rigid_body_sim/kinematics.hpp"
@@ -42,8 +43,10 @@ BodyDefinition bodyAt(const MassProperties& mass, const Eigen::Vector3d& p, cons
 }
 
 // columns × height boxes: height 1 is boxes resting on the ground apart; height 10 is stacks of 10.
-Scene boxes(std::size_t count, std::size_t height, IntegratorType type) {
+// Awake unless `asleep`: then stepped until every island sleeps (what a settled scene costs then).
+Scene boxes(std::size_t count, std::size_t height, IntegratorType type, bool asleep = false) {
   ContactSetup setup;
+  setup.settings.sleep = asleep;
   setup.environment = {ground()};
   std::vector<BodyDefinition> bodies;
   const std::size_t columns = count / height;
@@ -58,6 +61,10 @@ Scene boxes(std::size_t count, std::size_t height, IntegratorType type) {
   }
   Scene scene(bodies, type, 0.001, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
   scene.step(100);  // warm: the contacts settled, the warm-start memory filled
+  while (asleep && scene.contactStatistics().sleeping_bodies < static_cast<std::int64_t>(bodies.size())) {
+    if (scene.integratedSteps(0) > 20000) throw std::runtime_error("the stacks did not fall asleep in 20 s");
+    scene.step(100);
+  }
   return scene;
 }
 
@@ -99,6 +106,10 @@ void stacks(benchmark::State& bench, IntegratorType type) {
   Scene scene = boxes(static_cast<std::size_t>(bench.range(0)), 10, type);
   run(bench, scene);
 }
+void asleep(benchmark::State& bench, IntegratorType type) {
+  Scene scene = boxes(static_cast<std::size_t>(bench.range(0)), 10, type, true);
+  run(bench, scene);
+}
 void broadPhaseOnly(benchmark::State& bench) {
   Scene scene = apart(static_cast<std::size_t>(bench.range(0)), IntegratorType::kSemiImplicitEuler);
   run(bench, scene);
@@ -112,6 +123,7 @@ BENCHMARK_CAPTURE(resting, semi_implicit_euler, IntegratorType::kSemiImplicitEul
 BENCHMARK_CAPTURE(stacks, rk4, IntegratorType::kRk4)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(stacks, semi_implicit_euler, IntegratorType::kSemiImplicitEuler)
     ->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(asleep, rk4, IntegratorType::kRk4)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(broadPhaseOnly)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_MAIN();

@@ -86,7 +86,8 @@ def contact(rows):
         if parts[0] == "broadPhaseOnly":
             scene, method, bodies = "broad phase only (no pair touches)", "semi_implicit_euler", int(parts[1])
         else:
-            scene = {"resting": "resting on the ground", "stacks": "stacks of 10"}.get(parts[0], parts[0])
+            scene = {"resting": "resting on the ground", "stacks": "stacks of 10",
+                     "asleep": "stacks of 10, asleep"}.get(parts[0], parts[0])
             method, bodies = parts[1], int(parts[2])
         lines.append(f"| {scene} | {method} | {bodies} | {fmt(ns(entry) / (10 * bodies) / 1e3)} |")
     return lines

@@ -115,6 +115,8 @@ void Scene::setInput(std::size_t body, const AppliedWrench& input) {
   if (!records_[body].takes_input && !input.isZero()) {
     throw std::invalid_argument("body " + std::to_string(body) + " takes no wrench input");
   }
+  // A sleeping body under a new wrench wakes with its island (docs/contact.md, "Sleeping").
+  if (collides(body) && !(input == inputs_[body])) contact_->wake(collider_of_[body]);
   inputs_[body] = input;
 }
 
@@ -271,6 +273,7 @@ void Scene::reset() {
 void Scene::setForceModel(std::size_t body, const ForceModel& forces) {
   models_[body].forces = forces;
   assemble(body);
+  if (collides(body)) contact_->wake(collider_of_[body]);
 }
 
 std::string Scene::placementConflict(std::size_t body, const State& state) {

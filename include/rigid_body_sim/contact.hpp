@@ -24,6 +24,8 @@ struct ContactSettings {
   bool event_location = true;               ///< locate an isolated impact in time within the step
   bool continuous = true;                   ///< sweep fast bodies so that they cannot pass thin obstacles
   double event_tolerance = 1e-12;           ///< [s] width of the bracket that locates an impact
+  bool sleep = true;                        ///< put islands at rest to sleep (docs/contact.md, "Sleeping")
+  double sleep_time = 0.5;                  ///< [s] how long an island stays quiet before it sleeps
 };
 
 /// Throws std::invalid_argument naming the setting for one out of range.
@@ -70,6 +72,8 @@ struct ContactStatistics {
   std::int64_t refused_steps = 0;      ///< steps whose contact result was not finite (bodies kept their state)
   double max_penetration = 0.0;        ///< deepest penetration seen at the end of a free step [m]
   std::int64_t out_of_range = 0;       ///< bodies now beyond 1e6 m of the origin: out of the contact world
+  std::int64_t sleeping_bodies = 0;    ///< bodies asleep now
+  std::int64_t wakes = 0;              ///< islands woken since the last reset
 };
 
 }  // namespace rigid_body

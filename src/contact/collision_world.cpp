@@ -119,8 +119,12 @@ struct CollisionWorld::Impl {
     std::size_t object;
   };
   std::vector<Plane> planes;
+  std::vector<int> plane_of_object;  // per object: its index in planes, or −1
   std::vector<CollisionShape> body_shapes;
   std::vector<Eigen::Isometry3d> shape_poses;  // X_WS of each body's shape as last placed
+  std::vector<Eigen::Vector3d> body_origins;   // p_WB of each body as last placed
+  std::vector<double> body_reach;              // each body's outer radius about its origin [m]
+  std::vector<char> asleep;                    // per body: left out of detection (setAsleep)
 
   Impl() {
     // A face resting on a face needs several points in one pass (a box on the ground its four corners):
@@ -182,6 +186,7 @@ struct CollisionWorld::Impl {
   // `X_WB`: a body's pose, set before the object enters the broad phase (an object added at the origin would
   // pair with every other one there first: N² pairs for a large scene).
   btCollisionObject* add(const CollisionShape& shape, bool in_environment, int id, const btTransform& X_WB) {
+    plane_of_object.push_back(shape.type == ShapeType::kPlane ? static_cast<int>(planes.size()) : -1);
     if (shape.type == ShapeType::kPlane) {
       planes.push_back({shape.normal.normalized(), shape.offset, static_cast<std::size_t>(id)});
       shapes.push_back(nullptr);
@@ -194,6 +199,9 @@ struct CollisionWorld::Impl {
     object->setUserIndex(id);
     if (in_environment) {
       object->setCollisionFlags(object->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT);
+      // Inactive, as Bullet's own static objects are: its dispatcher skips a pair of two inactive objects,
+      // so a sleeping body (setAsleep) on the environment costs no narrow phase.
+      object->setActivationState(ISLAND_SLEEPING);
       if (shape.type != ShapeType::kPlane) object->setWorldTransform(toBt(shape.pose));
     } else {
       object->setActivationState(DISABLE_DEACTIVATION);
@@ -228,7 +236,12 @@ CollisionWorld::CollisionWorld(const std::vector<CollisionShape>& environment, c
       }
     }
   }
-  for (std::size_t i = 0; i < bodies.size(); ++i) impl_->shape_poses.push_back(body_poses[i] * bodies[i].pose);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    impl_->shape_poses.push_back(body_poses[i] * bodies[i].pose);
+    impl_->body_origins.push_back(body_poses[i].translation());
+    impl_->body_reach.push_back(outerRadius(bodies[i]));
+  }
+  impl_->asleep.assign(bodies.size(), 0);
   for (std::size_t i = 0; i < environment.size(); ++i) {
     impl_->add(environment[i], true, static_cast<int>(bodies.size() + i), btTransform::getIdentity());
   }
@@ -249,6 +262,21 @@ void CollisionWorld::setPose(std::size_t body, const Eigen::Vector3d& p_WB, cons
   pose.linear() = q_WB.toRotationMatrix();
   pose.translation() = p_WB;
   impl_->shape_poses[body] = pose * impl_->body_shapes[body].pose;
+  impl_->body_origins[body] = p_WB;
+}
+
+void CollisionWorld::setAsleep(std::size_t body, bool asleep) {
+  if (impl_->asleep[body] == asleep) return;
+  impl_->asleep[body] = asleep;
+  impl_->objects[body]->forceActivationState(asleep ? ISLAND_SLEEPING : DISABLE_DEACTIVATION);
+}
+
+void CollisionWorld::bounds(std::size_t body, Eigen::Vector3d& low, Eigen::Vector3d& high) const {
+  const btCollisionObject* object = impl_->objects[body].get();
+  btVector3 lo, hi;
+  object->getCollisionShape()->getAabb(object->getWorldTransform(), lo, hi);
+  low = fromBt(lo);
+  high = fromBt(hi);
 }
 
 namespace {
@@ -330,17 +358,22 @@ void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distan
       }
     }
   }
+  // A half-space meets a body only if the body's bounding sphere reaches it: one dot product per plane and
+  // body before any feature is looked at.
   for (std::size_t body = 0; body < impl_->body_count; ++body) {
-    for (const Impl::Plane& plane : impl_->planes) planeContacts(body, plane.object, max_distance, points);
+    if (impl_->asleep[body]) continue;
+    const Eigen::Vector3d& origin = impl_->body_origins[body];
+    const double reach = impl_->body_reach[body] + max_distance;
+    for (const Impl::Plane& plane : impl_->planes) {
+      if (plane.normal.dot(origin) - plane.offset > reach) continue;
+      planeContacts(body, plane.object, max_distance, points);
+    }
   }
 }
 
 double CollisionWorld::planeContacts(std::size_t body, std::size_t plane_object, double max_distance,
                                      std::vector<ContactPoint>& points) const {
-  const Impl::Plane* plane = nullptr;
-  for (const Impl::Plane& candidate : impl_->planes) {
-    if (candidate.object == plane_object) plane = &candidate;
-  }
+  const Impl::Plane* plane = &impl_->planes[static_cast<std::size_t>(impl_->plane_of_object[plane_object])];
   double smallest = max_distance;
   const Eigen::Vector3d& n = plane->normal;
   planeFeatures(impl_->body_shapes[body], impl_->shape_poses[body], n, [&](int feature, const Eigen::Vector3d& x) {

@@ -42,6 +42,13 @@ class CollisionWorld {
   /// Places body i's shape for the body at (p_WB, q_WB).
   void setPose(std::size_t body, const Eigen::Vector3d& p_WB, const Eigen::Quaterniond& q_WB);
 
+  /// A sleeping body keeps its pose and is left out of detection: no pair of it with the environment or
+  /// another sleeping body is tested (a pair with an awake body still is).
+  void setAsleep(std::size_t body, bool asleep);
+
+  /// Body i's bounding box in the world as its pose is set.
+  void bounds(std::size_t body, Eigen::Vector3d& low, Eigen::Vector3d& high) const;
+
   /// Broad and narrow phase on the poses as set: every contact point no farther apart than `max_distance`
   /// goes to `points` (cleared first), made afresh (no memory of the last call).
   void detect(std::vector<ContactPoint>& points, double max_distance);

@@ -17,6 +17,7 @@ void validateContactSettings(const ContactSettings& s) {
           "contact restitution_threshold must be a finite number >= 0 [m/s]");
   require(s.penetration_slop >= 0.0 && s.penetration_slop <= 1.0, "contact penetration_slop must be in [0, 1] [m]");
   require(s.position_correction >= 0.0 && s.position_correction <= 1.0, "contact position_correction must be in [0, 1]");
+  require(s.sleep_time >= 0.01 && s.sleep_time <= 3600.0, "contact sleep_time must be in [0.01, 3600] [s]");
   require(s.event_tolerance > 0.0 && s.event_tolerance <= 1.0, "contact event_tolerance must be in (0, 1] [s]");
 }
 

@@ -72,6 +72,7 @@ ContactStep::ContactStep(const ContactSetup& setup, const std::vector<std::size_
   reserved_.assign(n, 0);
   swept_low_.resize(n);
   swept_high_.resize(n);
+  sleep_.reset(n);
 }
 
 std::uint64_t ContactStep::pairKey(std::size_t a, std::size_t b) const {
@@ -164,11 +165,18 @@ void ContactStep::restart(const std::vector<State>& states) {
   for (auto& list : contacts_) list.clear();
   impacts_.clear();
   statistics_ = ContactStatistics();
+  sleep_.reset(colliders_.size());
+  syncSleep();
 }
 
 void ContactStep::step(SceneBodies& bodies, const std::vector<char>& running, double h,
                        std::vector<StepStatus>& failed) {
-  stepSplitting(bodies, running, h, failed, 0);
+  if (sleep_.anyAsleep()) wakeReachedIslands(bodies, running, h);
+  syncSleep();  // islands woken from outside (a new input, a force model) leave Bullet's sleep here
+  awake_.resize(colliders_.size());
+  for (std::size_t k = 0; k < colliders_.size(); ++k) awake_[k] = running[k] && !sleep_.asleep(k);
+  stepSplitting(bodies, awake_, h, failed, 0);
+  if (settings_.sleep) updateSleep(bodies, h);
 }
 
 void ContactStep::stepSplitting(SceneBodies& bodies, const std::vector<char>& running, double h,
@@ -241,6 +249,9 @@ void ContactStep::startSolverLists() {
 std::size_t ContactStep::solverIndex(const SceneBodies& bodies, std::size_t object) {
   if (!world_->isBody(object)) return kEnvironment;
   if (solver_of_[object] != kUnassigned) return solver_of_[object];
+  // A sleeping body in a contact with an awake one: wakeReachedIslands wakes it before the step whenever the
+  // awake body's reach bound holds; should it not, the island wakes now and moves with the solve.
+  wake(object);
   const std::size_t body = colliders_[object];
   const MassProperties& mass = bodies.models[body].mass;
   const State& state = bodies.states[body];
@@ -374,15 +385,25 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
     statistics_.max_penetration = std::max(statistics_.max_penetration, -point.distance);
     addContact(point, bodies, true);
   }
-  touching_.clear();
+  // A sleeping island's pairs are still touching (not tested while it sleeps): kept for when it wakes.
+  kept_touching_.clear();
+  if (sleep_.anyAsleep()) {
+    for (std::uint64_t key : touching_) {
+      if (sleepingPair(key)) kept_touching_.push_back(key);
+    }
+  }
+  touching_.swap(kept_touching_);
   for (const ContactPoint* point : solver_points_) touching_.push_back(pairKey(point->a, point->b));
   std::sort(touching_.begin(), touching_.end());
   touching_.erase(std::unique(touching_.begin(), touching_.end()), touching_.end());
   if (recording_) {
-    for (auto& list : contacts_) list.clear();
+    for (std::size_t k = 0; k < contacts_.size(); ++k) {
+      if (!sleep_.asleep(k)) contacts_[k].clear();  // a sleeping body reports its contacts as it fell asleep
+    }
   }
   if (solver_contacts_.empty()) {
-    warm_.clear();
+    warm_.erase(std::remove_if(warm_.begin(), warm_.end(), [&](const WarmPoint& w) { return !sleepingPair(w.key); }),
+                warm_.end());
     for (std::size_t s = 1; s < solver_bodies_.size(); ++s) solver_of_[solver_body_of_[s]] = kUnassigned;
     return;
   }
@@ -453,6 +474,11 @@ void ContactStep::rememberContacts(const SceneBodies& bodies, double h, bool con
     }
     if (world_->isBody(point.b)) {
       contacts_[point.b].push_back({partner(point.a), point.on_b, -c.n, depth, c.normal_impulse, -friction});
+    }
+  }
+  if (sleep_.anyAsleep()) {
+    for (const WarmPoint& w : warm_) {
+      if (sleepingPair(w.key)) warm_next_.push_back(w);  // kept for when the island wakes
     }
   }
   std::sort(warm_next_.begin(), warm_next_.end());

@@ -12,6 +12,7 @@
 
 #include "collision_world.hpp"
 #include "contact_solver.hpp"
+#include "island_sleep.hpp"
 #include "rigid_body_sim/contact.hpp"
 #include "rigid_body_sim/dynamics.hpp"
 #include "rigid_body_sim/integrators.hpp"
@@ -59,10 +60,16 @@ class ContactStep {
   /// Forgets the touching pairs, warm starts and figures (after a reset or a state set from outside).
   void restart(const std::vector<State>& states);
 
+  /// Wakes the island colliding body k sleeps in, if it sleeps (its input or force model changed).
+  void wake(std::size_t k);
+  bool asleep(std::size_t k) const { return sleep_.asleep(k); }
+
   const std::vector<std::size_t>& colliders() const { return colliders_; }
   /// The contacts of colliding body k at the end of the last step (kept only while recording).
   const std::vector<Contact>& contacts(std::size_t k) const { return contacts_[k]; }
-  void setRecording(bool recording) { recording_ = recording; }
+  /// Recording from now on; a scene that starts recording wakes its sleeping islands, so that their reports
+  /// are made afresh.
+  void setRecording(bool recording);
   const ContactStatistics& statistics() const { return statistics_; }
   /// The last impacts located in time (at most kImpactLog of them, oldest first).
   const std::vector<ImpactEvent>& impacts() const { return impacts_; }
@@ -108,6 +115,18 @@ class ContactStep {
   void findFastImpacts(SceneBodies& bodies, const std::vector<char>& running, double h);
   bool advanceToImpact(SceneBodies& bodies, std::size_t a, std::size_t b, double h, Candidate& hit);
   double closingSpeedBound(const SceneBodies& bodies, std::size_t object, const State& at) const;
+  // Sleeping (contact_sleep.cpp): islands at rest skip the step; an awake body that may reach a sleeping
+  // one within the step wakes it first.
+  void wakeReachedIslands(const SceneBodies& bodies, const std::vector<char>& running, double h);
+  void updateSleep(SceneBodies& bodies, double h);
+  void syncSleep();
+  bool sleepingPair(std::uint64_t key) const;
+  IslandSleep sleep_;
+  std::vector<char> awake_, quiet_, supported_;  // per colliding body
+  std::vector<std::pair<std::size_t, std::size_t>> links_;
+  std::vector<std::size_t> to_check_;
+  std::vector<std::uint64_t> kept_touching_;
+
   void startSolverLists();
   std::size_t solverIndex(const SceneBodies& bodies, std::size_t object);
   void addContact(const ContactPoint& point, const SceneBodies& bodies, bool resting);

@@ -140,6 +140,8 @@ void NodeDiagnostics::addBodies(diagnostic_updater::DiagnosticStatusWrapper& sta
     status.add("impacts found by the swept test", contact.swept_impacts);
     status.add("contact steps refused (non-finite)", contact.refused_steps);
     status.add("bodies out of contact range (1e6 m)", contact.out_of_range);
+    status.add("bodies asleep", contact.sleeping_bodies);
+    status.add("islands woken since reset", contact.wakes);
   }
   // Drift per body, keyed by the body frame when the scene has several.
   for (std::size_t body = 0; body < bodies; ++body) {
