@@ -132,6 +132,8 @@ std::size_t Scene::runningBodies() const {
   }));
 }
 
+std::size_t Scene::collidingBodies() const { return contact_ ? contact_->colliders().size() : 0; }
+
 SceneStepResult Scene::step(std::int64_t steps) {
   SceneStepResult result;
   if (steps <= 0) return result;

@@ -484,7 +484,12 @@ std::int64_t World::runningCount() const {
   return static_cast<std::int64_t>(std::max<std::size_t>(1, scene_.runningBodies()));
 }
 
-std::int64_t World::chunkSteps() const { return std::max(kMinChunkSteps, kRequestChunkBodySteps / runningCount()); }
+std::int64_t World::chunkSteps() const {
+  const auto colliders = static_cast<std::int64_t>(scene_.collidingBodies());
+  if (colliders == 0) return std::max(kMinChunkSteps, kRequestChunkBodySteps / runningCount());
+  const std::int64_t weighted = runningCount() + (kColliderChunkWeight - 1) * colliders;
+  return std::max<std::int64_t>(1, kRequestChunkBodySteps / weighted);
+}
 
 Nanoseconds World::deadlineAfter(double seconds) const {
   return std::isfinite(seconds) ? saturatingAdd(wallClock(), toNanoseconds(seconds)) : kNoDeadline;

@@ -124,6 +124,8 @@ class Scene {
   std::size_t firstDiverged() const;
   /// Bodies still integrating (not diverged).
   std::size_t runningBodies() const;
+  /// Bodies with a collision shape (stepped with the contact step).
+  std::size_t collidingBodies() const;
   /// Steps a body integrated since construction (paused, dropped and diverged steps do not count).
   std::int64_t integratedSteps(std::size_t body = 0) const { return records_[body].integrated_steps; }
   /// A body's state at construction (and after every reset), for drift diagnostics.

@@ -102,11 +102,15 @@ struct WorldCounters {
   std::int64_t max_substeps_seen = 0;     ///< most steps one update integrated
 };
 
-/// Body-steps between two readings of the wall clock in step(N) and a timed update() (~0.1 ms of free rk4
-/// bodies, ~5 ms of stacked contact boxes), but at least kMinChunkSteps steps: a tick's usual steps stay one
-/// Scene::step (one hand-out to the threads, one energy check).
+/// Body-steps between two readings of the wall clock in step(N) and a timed update(), but for a scene without
+/// colliders at least kMinChunkSteps steps: a tick's usual steps stay one Scene::step (one hand-out to the
+/// threads, one energy check).
 constexpr std::int64_t kRequestChunkBodySteps = 1024;
 constexpr std::int64_t kMinChunkSteps = 16;
+/// A colliding body counts as this many body-steps in a chunk, and a scene with colliders may chunk single
+/// steps: a colliding body's step (free step, detection, solve) costs tens of free ones (docs/performance.md,
+/// "Contact"), so that a large pile still reads the clock, and stops at its budget, within one step.
+constexpr std::int64_t kColliderChunkWeight = 64;
 
 class World {
  public:
@@ -230,7 +234,7 @@ class World {
                       Nanoseconds deadline = kNoDeadline);
   static constexpr Nanoseconds kNoDeadline = std::numeric_limits<Nanoseconds>::max();
   std::int64_t runningCount() const;  // the running bodies, at least 1 (the caps divide by it)
-  std::int64_t chunkSteps() const;    // steps per chunk: kRequestChunkBodySteps body-steps, at least kMinChunkSteps
+  std::int64_t chunkSteps() const;    // steps per chunk: kRequestChunkBodySteps (weighted) body-steps
   Nanoseconds deadlineAfter(double seconds) const;  // the wall clock plus `seconds`; kNoDeadline for an infinite budget
   std::int64_t nextEvent() const;
   void refreshInput(std::size_t body);

@@ -295,6 +295,38 @@ TEST(World, AStepRequestStopsAtItsWallTimeBudgetWhereItGotToAndTheRestContinuesT
   EXPECT_THROW(makeWorld(settings), std::invalid_argument);
 }
 
+TEST(World, AStepRequestOnASceneWithManyCollidersReadsTheClockAfterEveryStep) {
+  // 16 boxes resting apart on the ground: 16 × kColliderChunkWeight body-steps a step, so a chunk is one
+  // step and a request against a 0.25 s budget, with a clock that advances 0.1 s a reading, stops after the
+  // third step (a chunk of kMinChunkSteps would run 16 steps between readings: over a second for a pile).
+  Nanoseconds wall = 0;
+  WorldSettings settings = settingsWith();
+  settings.start_paused = true;
+  settings.max_request_seconds = 0.25;
+  settings.wall_clock = [&wall] { return wall += seconds(0.1); };
+  ContactSetup contact;
+  CollisionShape ground;
+  ground.type = ShapeType::kPlane;
+  contact.environment = {ground};
+  std::vector<BodyDefinition> boxes;
+  const Eigen::Vector3d size(0.2, 0.2, 0.2);
+  for (int i = 0; i < 16; ++i) {
+    CollisionShape box;
+    box.type = ShapeType::kBox;
+    box.size = size;
+    contact.bodies.push_back(box);
+    State initial;
+    initial.p_WB = Eigen::Vector3d(0.5 * i, 0.0, 0.1);
+    boxes.push_back(BodyDefinition{Model{MassProperties::box(kMass, size), ForceModel{}}, initial, true});
+  }
+  World world(boxes, IntegratorType::kRk4, IntegratorSettings(), settings, StepAssembly::kLeaveOut, contact);
+  world.start(0);
+  const CommandReply stopped = world.step(100, world.stamp());
+  EXPECT_FALSE(stopped.accepted);
+  EXPECT_NE(stopped.message.find("stopped after 3 of 100 steps"), std::string::npos) << stopped.message;
+  EXPECT_EQ(world.scene().integratedSteps(0), 3);
+}
+
 TEST(World, AnUpdatePastItsWallTimeBudgetDropsTheRestOfItsStepsAndTheNextOneGoesOn) {
   // A wall clock that advances 0.1 s at every reading, against an update budget of 0.25 s (deadline 0.35 s
   // after the first reading at 0.1 s): an update 5 s late integrates three chunks of kRequestChunkBodySteps
