@@ -1,8 +1,9 @@
 // Cost of contact per body and step (Google Benchmark): N boxes resting on the ground apart from each other,
 // N boxes in stacks of 10 (every box touches two others or the ground), and N spheres in the air far apart
-// (the broad phase alone: no pair overlaps), all awake (sleeping off); and the stacks once asleep. Not a test: run by scripts/benchmark.sh; numbers in
-// docs/performance.md. One iteration is 10 steps of 1 ms (the node's default tick). Scenes without colliders
-// are scene_benchmark's: their cost with contact compiled in is measured there.
+// (the broad phase alone: no pair overlaps), all awake (sleeping off); and the stacks once asleep. Not a
+// test: run by scripts/benchmark.sh; numbers in docs/performance.md. One iteration is 10 steps of 1 ms (the
+// node's default tick). Scenes without colliders are scene_benchmark's: their cost with contact compiled in is
+// measured there.
 #include <benchmark/benchmark.h>
 
 #include <cmath>

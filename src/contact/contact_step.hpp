@@ -62,7 +62,6 @@ class ContactStep {
 
   /// Wakes the island colliding body k sleeps in, if it sleeps (its input or force model changed).
   void wake(std::size_t k);
-  bool asleep(std::size_t k) const { return sleep_.asleep(k); }
 
   const std::vector<std::size_t>& colliders() const { return colliders_; }
   /// The contacts of colliding body k at the end of the last step (kept only while recording).

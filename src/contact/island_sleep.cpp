@@ -24,11 +24,6 @@ void IslandSleep::wake(std::size_t k, std::vector<std::size_t>* woken) {
   members_[island].clear();
 }
 
-void IslandSleep::wakeAll() {
-  for (std::size_t k = 0; k < island_of_.size(); ++k) wake(k);
-  std::fill(quiet_time_.begin(), quiet_time_.end(), 0.0);
-}
-
 std::size_t IslandSleep::root(std::size_t k) {
   while (parent_[k] != k) {
     parent_[k] = parent_[parent_[k]];  // path halving

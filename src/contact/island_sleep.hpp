@@ -24,7 +24,6 @@ class IslandSleep {
   /// Wakes the island body k sleeps in (nothing if it is awake); its bodies start their quiet time anew and
   /// are appended to `woken` if given.
   void wake(std::size_t k, std::vector<std::size_t>* woken = nullptr);
-  void wakeAll();
 
   /// After a step of h: `links` are the pairs of awake bodies in contact (indices of colliding bodies),
   /// `quiet[k]` whether body k was quiet at the step's end and `supported[k]` whether it has a contact at
