@@ -15,7 +15,9 @@ check() {
      -DCMAKE_INSTALL_PREFIX="$prefix" install) >"$log" 2>&1 || { echo "catkin_make install failed"; return 1; }
   for file in lib/rigid_body_sim/rigid_body_node lib/rigid_body_sim/accuracy_report share/rigid_body_sim/launch/rigid_body.launch \
               share/rigid_body_sim/launch/rviz.launch share/rigid_body_sim/launch/test_fixture.launch share/rigid_body_sim/config/falling_box.yaml \
-              share/rigid_body_sim/rviz/rigid_body.rviz share/rigid_body_sim/meshes/l_bracket.obj; do
+              share/rigid_body_sim/rviz/rigid_body.rviz share/rigid_body_sim/meshes/l_bracket.obj \
+              share/rigid_body_sim/nodelet_plugins.xml share/rigid_body_sim/launch/nodelet_lockstep.launch \
+              lib/librigid_body_nodelets.so; do
     [ -e "$prefix/$file" ] || { echo "not installed: $file"; return 1; }
   done
   # A clean environment: only the system's ROS and the install space, not ./ws/devel.

@@ -1,6 +1,7 @@
 #include "rigid_body_sim/ros/outputs.hpp"
 
 #include <rosgraph_msgs/Clock.h>
+#include <boost/make_shared.hpp>
 #include <tf2_eigen/tf2_eigen.h>
 
 #include <cmath>
@@ -15,6 +16,14 @@ namespace rigid_body_ros {
 namespace {
 
 constexpr double kWarningPeriod = 2.0;  // [s] between repeats of the same warning
+
+// A message goes out as a shared copy: roscpp hands it as it is to a subscriber in this process (a nodelet in
+// the simulator's manager) and serialises it only for subscribers in other processes; one published by value
+// is serialised, and deserialised again, for every subscriber.
+template <class Message>
+void publishShared(const ros::Publisher& publisher, const Message& message) {
+  publisher.publish(boost::make_shared<Message>(message));
+}
 
 bool finite(const geometry_msgs::Vector3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 bool finite(const geometry_msgs::Point& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
@@ -131,7 +140,7 @@ void Outputs::publishStaticFrames(const ros::Time& stamp, std::vector<geometry_m
 void Outputs::publishClock(const rigid_body::World& world) {
   rosgraph_msgs::Clock clock;
   clock.clock = toRosTime(world.stamp());
-  clock_publisher_.publish(clock);
+  publishShared(clock_publisher_, clock);
 }
 
 void Outputs::publish(const rigid_body::World& world) {
@@ -171,7 +180,7 @@ void Outputs::publishStates(const rigid_body::World& world, const ros::Time& sta
     }
     fillBodyState(frame, states_message_.pose[body], states_message_.twist[body]);
   }
-  states_publisher_.publish(states_message_);
+  publishShared(states_publisher_, states_message_);
 }
 
 void Outputs::publishArray(const rigid_body::World& world, const ros::Time& stamp) {
@@ -194,7 +203,7 @@ void Outputs::publishArray(const rigid_body::World& world, const ros::Time& stam
     }
     array_message_.bodies[body] = odom;
   }
-  array_publisher_.publish(array_message_);
+  publishShared(array_publisher_, array_message_);
 }
 
 void Outputs::publishContacts(const rigid_body::World& world, std::size_t body, const ros::Time& stamp) {
@@ -249,7 +258,7 @@ void Outputs::publishBody(const rigid_body::World& world, std::size_t body, cons
       ROS_WARN_THROTTLE(kWarningPeriod, "rigid_body_node: %s: odometry withheld: a non-finite velocity",
                         config_.bodies[body].body_frame.c_str());
     } else {
-      if (odom) channel.odom.publish(channel.odom_message);
+      if (odom) publishShared(channel.odom, channel.odom_message);
       if (channel.noise) channel.noise->publish(channel.odom_message, stamp);
     }
   }
@@ -269,12 +278,12 @@ void Outputs::publishBody(const rigid_body::World& world, std::size_t body, cons
                         config_.bodies[body].body_frame.c_str());
       return;
     }
-    if (state_wanted) channel.state.publish(channel.state_message);
+    if (state_wanted) publishShared(channel.state, channel.state_message);
   }
   if (applied_wrench) {
     channel.applied_wrench_message.header.stamp = stamp;
     channel.applied_wrench_message.wrench = channel.state_message.applied_wrench;  // world axes, about the CoM
-    channel.applied_wrench.publish(channel.applied_wrench_message);
+    publishShared(channel.applied_wrench, channel.applied_wrench_message);
   }
 }
 

@@ -169,14 +169,15 @@ void SimulatorNode::report(const rigid_body::UpdateResult& result) {
   }
 }
 
-void SimulatorNode::runLockstep(const std::function<bool()>& keep_running) {
+void SimulatorNode::runLockstep(const std::function<bool()>& keep_running,
+                                const std::function<void()>& serve_callbacks) {
   const std::int64_t steps_per_publish =
       std::max<std::int64_t>(1, std::llround(std::min(1e12, 1.0 / (config_.rate * config_.dt))));
   outputs_.publishClock(world_);
   ros::WallTime pace_start = ros::WallTime::now();
   std::int64_t pace_steps = world_.clockSteps();
   while (ros::ok() && keep_running()) {
-    ros::spinOnce();  // wrenches and services act between two steps
+    serve_callbacks();  // wrenches and services act between two steps
     if (world_.paused() || world_.endOfTime()) {
       ros::WallDuration(kPausedPoll).sleep();
       pace_start = ros::WallTime::now();

@@ -35,15 +35,18 @@ class SimulatorNode {
   void start(const ros::Time& start_time);
 
   /// Lockstep: the node owns simulated time. Steps the scene, publishes /clock and the outputs at `rate`,
-  /// paces itself by real_time_factor (0: as fast as possible), serves callbacks between steps; returns at
-  /// shutdown or when `keep_running` says false. Called instead of ros::spin().
-  void runLockstep(const std::function<bool()>& keep_running = [] { return true; });
+  /// paces itself by real_time_factor (0: as fast as possible), and calls `serve_callbacks` between steps
+  /// (the node: ros::spinOnce; the nodelet: its own queue's callAvailable), so that wrenches and requests act
+  /// between two steps and never during one; returns at shutdown or when `keep_running` says false. Called
+  /// instead of ros::spin().
+  void runLockstep(const std::function<bool()>& keep_running, const std::function<void()>& serve_callbacks);
 
   /// One tick: the World integrates up to `now`; the state is published if the clock reached a new grid
   /// point. Published stamps advance by whole steps of dt, so they strictly increase.
   void update(const ros::Time& now);
 
   const rigid_body::World& world() const { return world_; }
+  bool lockstep() const { return config_.lockstep; }
 
  private:
   /// The node's notion of now [ns]: the World's own clock in lockstep, ROS time otherwise.
