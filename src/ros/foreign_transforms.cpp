@@ -9,8 +9,7 @@ namespace {
 constexpr uint32_t kQueueSize = 100;
 }  // namespace
 
-ForeignTransforms::ForeignTransforms(tf2::BufferCore& buffer)
-    : buffer_(buffer), own_name_(ros::this_node::getName()) {
+ForeignTransforms::ForeignTransforms(tf2::BufferCore& buffer, const OwnTransforms& own) : buffer_(buffer), own_(own) {
   nh_.setCallbackQueue(&queue_);
   tf_ = nh_.subscribe<tf2_msgs::TFMessage>(
       "/tf", kQueueSize, [this](const ros::MessageEvent<tf2_msgs::TFMessage const>& event) { onTransforms(event, false); });
@@ -29,9 +28,9 @@ ForeignTransforms::~ForeignTransforms() {
 
 void ForeignTransforms::onTransforms(const ros::MessageEvent<tf2_msgs::TFMessage const>& event, bool is_static) {
   // The node's own dynamic transforms stay out (its static ones, a mesh frame below a body, go in: frames of
-  // the body are found through them). They arrive within the process, without a connection header (roscpp
-  // then names the publisher "unknown_publisher"); over a connection they would carry the node's name.
-  if (!is_static && (!event.getConnectionHeaderPtr() || event.getPublisherName() == own_name_)) return;
+  // the body are found through them). They arrive within the process as the very message published; a
+  // sibling nodelet's, also within the process, are other messages and go in.
+  if (!is_static && own_.isOwn(event.getConstMessage().get())) return;
   // Time went back (a simulation clock restarted): the buffer's history is from another run.
   const ros::Time now = ros::Time::now();
   if (now < last_update_) {

@@ -43,7 +43,9 @@ bool finite(const rigid_body_sim::RigidBodyState& m) {
 
 }  // namespace
 
-Outputs::Outputs(ros::NodeHandle& nh, const NodeConfig& config) : config_(config), channels_(config.bodies.size()) {
+Outputs::Outputs(ros::NodeHandle& nh, const NodeConfig& config, OwnTransforms& own_transforms)
+    : config_(config), channels_(config.bodies.size()), own_transforms_(own_transforms) {
+  if (config.publish.tf) own_transforms_.advertise(nh);
   // In lockstep at full speed the outputs come in bursts: a deeper queue lets subscribers keep up longer
   // (a subscriber slower than the simulation still misses messages; set real_time_factor then).
   const uint32_t queue = config.lockstep ? 100 : 10;
@@ -158,7 +160,7 @@ void Outputs::publish(const rigid_body::World& world) {
   due.odom = dueAt(odom_schedule_, config_.publish.odom_rate);
   due.state = dueAt(state_schedule_, config_.publish.state_rate);
   for (std::size_t body = 0; body < channels_.size(); ++body) publishBody(world, body, stamp, due);
-  if (due.tf) tf_broadcaster_.sendTransform(transforms_);  // every body in one tf message
+  if (due.tf) own_transforms_.publish(transforms_);  // every body in one tf message
   if (due.odom && array_subscribers_ > 0) publishArray(world, stamp);
   if (due.state && states_subscribers_ > 0) publishStates(world, stamp);
 }

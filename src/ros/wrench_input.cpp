@@ -37,11 +37,11 @@ std::string withoutLeadingSlash(const std::string& frame) {
 }  // namespace
 
 WrenchInput::WrenchInput(ros::NodeHandle& nh, const NodeConfig& config, rigid_body::World& world,
-                         std::function<rigid_body::Nanoseconds()> now)
+                         std::function<rigid_body::Nanoseconds()> now, const OwnTransforms& own_transforms)
     : config_(config),
       world_(world),
       now_(std::move(now)),
-      foreign_transforms_(tf_buffer_),
+      foreign_transforms_(tf_buffer_, own_transforms),
       messages_(config.bodies.size(), 0),
       refused_messages_(config.bodies.size(), 0) {
   for (std::size_t body = 0; body < config.bodies.size(); ++body) body_by_frame_[config.bodies[body].body_frame] = body;

@@ -1,5 +1,5 @@
 // The tf tree as the other nodes publish it: /tf and /tf_static into a tf2 buffer, like tf2_ros's
-// TransformListener, except the node's own /tf messages. The node publishes every body's pose on /tf at the
+// TransformListener, except the node's own /tf messages (OwnTransforms knows them). The node publishes every body's pose on /tf at the
 // output rate; taking them back in would insert each of them into the buffer again (for 10 000 bodies a
 // million insertions a second, docs/performance_log.md#own-transforms), only to read back a pose the World
 // holds exactly. Lookups through a body of this node use the World's pose instead (WrenchInput).
@@ -9,6 +9,8 @@
 #include <ros/ros.h>
 #include <tf2/buffer_core.h>
 #include <tf2_msgs/TFMessage.h>
+
+#include "rigid_body_sim/ros/own_transforms.hpp"
 
 #include <atomic>
 #include <string>
@@ -20,7 +22,7 @@ class ForeignTransforms {
  public:
   /// Fills `buffer` from /tf (but for this node's own messages) and /tf_static, on a thread of its own, as
   /// tf2_ros's listener does: the buffer stays current while the node's spinner is busy.
-  explicit ForeignTransforms(tf2::BufferCore& buffer);
+  ForeignTransforms(tf2::BufferCore& buffer, const OwnTransforms& own);
   ~ForeignTransforms();
   ForeignTransforms(const ForeignTransforms&) = delete;
   ForeignTransforms& operator=(const ForeignTransforms&) = delete;
@@ -29,7 +31,7 @@ class ForeignTransforms {
   void onTransforms(const ros::MessageEvent<tf2_msgs::TFMessage const>& event, bool is_static);
 
   tf2::BufferCore& buffer_;
-  const std::string own_name_;
+  const OwnTransforms& own_;
   ros::CallbackQueue queue_;
   ros::NodeHandle nh_;
   ros::Subscriber tf_, tf_static_;

@@ -12,7 +12,6 @@
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <tf2_ros/static_transform_broadcaster.h>
-#include <tf2_ros/transform_broadcaster.h>
 
 #include <cstdint>
 #include <memory>
@@ -24,6 +23,7 @@
 #include "rigid_body_sim/RigidBodyState.h"
 #include "rigid_body_sim/ros/odometry_noise.hpp"
 #include "rigid_body_sim/ros/output_schedule.hpp"
+#include "rigid_body_sim/ros/own_transforms.hpp"
 #include "rigid_body_sim/ros/parameters.hpp"
 #include "rigid_body_sim/world.hpp"
 
@@ -31,7 +31,8 @@ namespace rigid_body_ros {
 
 class Outputs {
  public:
-  Outputs(ros::NodeHandle& nh, const NodeConfig& config);
+  /// Every body's pose goes out on /tf through `own_transforms`.
+  Outputs(ros::NodeHandle& nh, const NodeConfig& config, OwnTransforms& own_transforms);
 
   /// The static tf body_frame → mesh_frame of the bodies that have one, and `others` (the sensors' frames), in
   /// one latched message: a second static broadcaster of the node would replace the first's.
@@ -83,7 +84,7 @@ class Outputs {
 
   const NodeConfig& config_;
   std::vector<Channel> channels_;  ///< sized once: the subscriber-count callbacks hold indices into it
-  tf2_ros::TransformBroadcaster tf_broadcaster_;
+  OwnTransforms& own_transforms_;
   std::unique_ptr<tf2_ros::StaticTransformBroadcaster> mesh_frame_broadcaster_;
   std::vector<geometry_msgs::TransformStamped> transforms_;  ///< one per body when tf is published
   ros::Publisher clock_publisher_;                             ///< lockstep or publish/clock only

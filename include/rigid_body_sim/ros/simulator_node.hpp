@@ -63,6 +63,7 @@ class SimulatorNode {
   ros::NodeHandle nh_;
   ros::NodeHandle private_nh_;
   rigid_body::World world_;
+  OwnTransforms own_transforms_;  // before its users: WrenchInput's tf listener, Outputs
   WrenchInput wrench_input_;
   Outputs outputs_;
   Markers markers_;

@@ -54,8 +54,9 @@ struct ConvertedWrench {
 class WrenchInput {
  public:
   /// `now` gives the arrival time of a message on the node's clock.
+  /// `own_transforms` are the node's /tf messages, left out of the tf buffer.
   WrenchInput(ros::NodeHandle& nh, const NodeConfig& config, rigid_body::World& world,
-              std::function<rigid_body::Nanoseconds()> now);
+              std::function<rigid_body::Nanoseconds()> now, const OwnTransforms& own_transforms);
 
   /// Limits and finiteness of a wrench as sent (magnitudes are the same in any axes); counts and warns.
   bool accept(const geometry_msgs::Wrench& wrench);
