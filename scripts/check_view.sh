@@ -3,10 +3,10 @@
 # scene (default: config/falling_box.yaml, with contact) and rviz with rviz/rigid_body.rviz on a free virtual
 # display (Xvfb, software OpenGL), waits until the body's colour is on the screen (not a blank or black
 # window), then moves the first body 0.5 m sideways (or 2 m up) with its set_state service (or resets the
-# scene) and checks that its colour moved on a second capture (a frozen or stale view fails). Logs and captures go to a private
-# temporary folder (the logs removed after a pass). Usage: scripts/check_view.sh [SCENE.yaml]
-# [SCREENSHOT.png]; exit 1 if the view is blank or does not follow the body. Needs rviz, xvfb and
-# imagemagick (installed here; not part of scripts/test.sh, being ~80 packages).
+# scene) and checks that its colour moved on a second capture (a frozen or stale view fails). Logs and
+# captures go to a private temporary folder (the logs removed after a pass). Usage: scripts/check_view.sh
+# [SCENE.yaml] [SCREENSHOT.png]; exit 1 if the view is blank or does not follow the body. Needs rviz, xvfb
+# and imagemagick (installed here; not part of scripts/test.sh, being ~80 packages).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 install_dependencies
@@ -44,31 +44,28 @@ rosrun rviz rviz -d "$PACKAGE_DIR/rviz/rigid_body.rviz" >"$work/rviz.log" 2>&1 &
 STOP_PIDS="$STOP_PIDS $!"
 
 # The first body's colour (markers.cpp: 0.90, 0.45, 0.10) shaded by rviz's light: orange pixels, red well
-# above blue. Prints their count and their mean column and row.
+# above blue. Prints their count and their mean column and row ("0 0 0" if none).
 body_pixels() {
-  convert "$1" -fx '(r > 0.35 && r > 1.6*b + 0.1 && g > 0.6*b && r > g) ? 1 : 0' -format \
-    '%[fx:mean*w*h]\n' info: | head -1
-}
-body_centre() {
   convert "$1" -fx '(r > 0.35 && r > 1.6*b + 0.1 && g > 0.6*b && r > g) ? 1 : 0' txt:- |
-    awk -F'[,: ]+' '/#FFFFFF|white/ { x += $1; y += $2; n++ } END { if (n) printf "%.1f %.1f\n", x / n, y / n; else print "0 0" }'
+    awk -F'[,: ]+' '/#FFFFFF|white/ { x += $1; y += $2; n++ }
+                    END { if (n) printf "%d %.1f %.1f\n", n, x / n, y / n; else print "0 0 0" }'
 }
-orange=0
+on_screen() { (($(cut -d' ' -f1 <<<"$1") >= 200)); }
 for _ in $(seq 60); do
   sleep 1
   import -window root "$shot"
-  orange=$(body_pixels "$shot")
-  awk -v n="$orange" 'BEGIN { exit (n >= 200) ? 0 : 1 }' && break
+  before=$(body_pixels "$shot")
+  on_screen "$before" && break
 done
-echo "view: $shot, $orange pixels of the body's colour"
-awk -v n="$orange" 'BEGIN { exit (n >= 200) ? 0 : 1 }' || { echo "view: the body is not on the screen (logs: $work)"; exit 1; }
-before=$(body_centre "$shot")
+echo "view: $shot, $(cut -d' ' -f1 <<<"$before") pixels of the body's colour"
+on_screen "$before" || { echo "view: the body is not on the screen (logs: $work)"; exit 1; }
 
 # Move the first body (its set_state: /set_state for one body, /NAME/set_state in a scene) to a free place
 # (set_state refuses an overlap): 0.5 m along x or y, else 2 m up (then captured before it falls back). A
 # scene without body services (publish/body_services: false) is reset instead: its bodies back at their
 # initial poses, captured at once.
 wait_after=$(/usr/bin/python3 - <<'PY'
+import copy
 import sys
 import rosgraph, rospy
 from rigid_body_sim.srv import GetState, SetState
@@ -83,8 +80,10 @@ name = names[0]
 start = rospy.ServiceProxy(name[: -len("set_state")] + "get_state", GetState)().pose
 set_state = rospy.ServiceProxy(name, SetState)
 for dx, dy, dz, wait in ((0.5, 0, 0, 3), (-0.5, 0, 0, 3), (0, 0.5, 0, 3), (0, -0.5, 0, 3), (0, 0, 2.0, 0.2)):
-    pose = rospy.ServiceProxy(name[: -len("set_state")] + "get_state", GetState)().pose
-    pose.position.x, pose.position.y, pose.position.z = start.position.x + dx, start.position.y + dy, start.position.z + dz
+    pose = copy.deepcopy(start)
+    pose.position.x += dx
+    pose.position.y += dy
+    pose.position.z += dz
     reply = set_state(pose=pose, twist_frame="world")
     if reply.success:
         print(wait)
@@ -96,9 +95,10 @@ PY
 sleep "$wait_after"
 moved="$work/moved.png"
 import -window root "$moved"
-after=$(body_centre "$moved")
-echo "view: the body's colour centred at ($before) px, after moving it at ($after) px"
+after=$(body_pixels "$moved")
+echo "view: the body's colour centred at ($(cut -d' ' -f2- <<<"$before")) px, after moving it at" \
+  "($(cut -d' ' -f2- <<<"$after")) px"
 awk -v a="$before" -v b="$after" 'BEGIN { split(a, p, " "); split(b, q, " ");
-  exit ((p[1] - q[1])^2 + (p[2] - q[2])^2 >= 25) ? 0 : 1 }' ||
+  exit ((p[2] - q[2])^2 + (p[3] - q[3])^2 >= 25) ? 0 : 1 }' ||
   { echo "view: the body did not move on the screen (logs: $work)"; exit 1; }
 rm -f "$work"/*.log

@@ -24,8 +24,7 @@ class RigidBodyNodelet : public nodelet::Nodelet {
   ~RigidBodyNodelet() override {
     running_ = false;
     if (driver_.joinable()) driver_.join();
-    node_.reset();
-    if (sim_time_) sim_time_->release();
+    node_.reset();  // the simulator first; then the members, sim_time_ giving /use_sim_time back
   }
 
  private:

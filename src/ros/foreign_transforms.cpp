@@ -2,6 +2,8 @@
 
 #include <tf2/exceptions.h>
 
+#include <string>
+
 namespace rigid_body_ros {
 
 namespace {

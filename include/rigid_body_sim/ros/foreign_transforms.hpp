@@ -1,8 +1,8 @@
 // The tf tree as the other nodes publish it: /tf and /tf_static into a tf2 buffer, like tf2_ros's
-// TransformListener, except the node's own /tf messages (OwnTransforms knows them). The node publishes every body's pose on /tf at the
-// output rate; taking them back in would insert each of them into the buffer again (for 10 000 bodies a
-// million insertions a second, docs/performance_log.md#own-transforms), only to read back a pose the World
-// holds exactly. Lookups through a body of this node use the World's pose instead (WrenchInput).
+// TransformListener, except the node's own /tf messages (OwnTransforms knows them). The node publishes every
+// body's pose on /tf at the output rate; taking them back in would insert each of them into the buffer again
+// (for 10 000 bodies a million insertions a second, docs/performance_log.md#own-transforms), only to read back
+// a pose the World holds exactly. Lookups through a body of this node use the World's pose instead (WrenchInput).
 #pragma once
 
 #include <ros/callback_queue.h>
@@ -10,11 +10,10 @@
 #include <tf2/buffer_core.h>
 #include <tf2_msgs/TFMessage.h>
 
-#include "rigid_body_sim/ros/own_transforms.hpp"
-
 #include <atomic>
-#include <string>
 #include <thread>
+
+#include "rigid_body_sim/ros/own_transforms.hpp"
 
 namespace rigid_body_ros {
 
