@@ -18,7 +18,7 @@ DEBIAN_PACKAGES=(
   libeigen3-dev libgtest-dev libboost-math-dev libbenchmark-dev libbullet-dev pkg-config
   libvisualization-msgs-dev ros-visualization-msgs python3-visualization-msgs
   libsensor-msgs-dev ros-sensor-msgs python3-sensor-msgs
-  libnodeletlib-dev libnodeletlib-tools pluginlib-dev
+  libnodeletlib-dev libnodeletlib-tools pluginlib-dev libyaml-cpp-dev python3-yaml
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure liburdf-dev liburdfdom-dev
   gnuplot-nox libdiagnostic-updater-dev python3-diagnostic-msgs libdiagnostic-msgs-dev libroslib-dev libros-rosgraph-msgs-dev python3-rosgraph-msgs
 )

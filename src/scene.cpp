@@ -42,21 +42,13 @@ Scene::Scene(const std::vector<BodyDefinition>& bodies, IntegratorType integrato
     records_.push_back(BodyRecord{body.initial, body.takes_input});
   }
   collider_of_.assign(bodies.size(), kNoCollider);
+  contact_setup_ = contact;  // kept for edits of the body list (scene_edits.cpp)
+  if (!contact.active()) contact_setup_.bodies.assign(bodies.size(), std::nullopt);
   if (contact.active()) {
     if (contact.bodies.size() != bodies.size()) throw std::invalid_argument("contact: one entry per body is needed");
-    validateContactSettings(contact.settings);
-    for (const CollisionShape& shape : contact.environment) validateShape(shape, true);
-    std::vector<std::size_t> colliders;
-    for (std::size_t body = 0; body < bodies.size(); ++body) {
-      if (!contact.bodies[body]) continue;
-      validateShape(*contact.bodies[body], false);
-      collider_of_[body] = colliders.size();
-      colliders.push_back(body);
-    }
-    contact_ = std::make_unique<contact::ContactStep>(contact, colliders, integrator, states_);
+    adoptContactStep(contactStepFor(contact.bodies, states_));
+    // The start-up check of every body against every other and the environment (contactStepFor leaves it out).
     contact_->start(states_);
-    collider_running_.assign(colliders.size(), 1);
-    collider_failed_.assign(colliders.size(), StepStatus::kOk);
   }
   terms_.resize(bodies.size());
   for (std::size_t body = 0; body < bodies.size(); ++body) assemble(body);
@@ -94,6 +86,7 @@ void Scene::assemble(std::size_t body) {
 }
 
 void Scene::setRecordContacts(bool record) {
+  record_contacts_ = record;
   if (contact_) contact_->setRecording(record);
 }
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -115,6 +116,19 @@ class Scene {
   /// than the penetration slop, or inside a closed environment mesh); otherwise a message naming both.
   std::string placementConflict(std::size_t body, const State& state);
 
+  // ----- edits of the body list (scene_edits.cpp), between steps -----
+  /// Appends a body at its initial state, with `shape` as its collision shape (none: it collides with
+  /// nothing), and returns its index (the last). The other bodies keep their indices, states, inputs and
+  /// integrator memory: a body that does not collide steps on bit for bit as without the edit. A colliding
+  /// arrival rebuilds the contact step, whose memory (touching pairs, warm starts, sleep, figures) restarts
+  /// as after setState. Throws std::invalid_argument, the scene unchanged, for a non-finite state, an invalid
+  /// shape, or a colliding body placed inside another body or the environment (the message names both).
+  std::size_t addBody(const BodyDefinition& body, const std::optional<CollisionShape>& shape = std::nullopt);
+  /// Removes a body: the later ones move down one index. Throws std::invalid_argument for a body out of
+  /// range or the only one (a scene has at least one body). Removing a collider restarts the contact
+  /// memory as addBody does.
+  void removeBody(std::size_t body);
+
   const State& state(std::size_t body = 0) const { return states_[body]; }
   const Model& model(std::size_t body = 0) const { return models_[body]; }
   /// The terms a body's step evaluates: the assembled-terms query.
@@ -179,6 +193,12 @@ class Scene {
   // The colliding bodies' `steps` steps together with contact.
   void stepColliders(std::int64_t steps, SceneStepResult& result);
   void assemble(std::size_t body);
+  // The contact step for the colliders among `shapes` (one per body) at `states`, started without the
+  // start-up's all-pairs check; null when none collides. Throws for invalid settings or shapes.
+  std::unique_ptr<contact::ContactStep> contactStepFor(const std::vector<std::optional<CollisionShape>>& shapes,
+                                                       const std::vector<State>& states) const;
+  // Takes `step` as the contact step of the current body list (collider_of_ and the scratch follow it).
+  void adoptContactStep(std::unique_ptr<contact::ContactStep> step);
 
   // The hot arrays, one entry per body. models_ changes only by setForceModel (between steps).
   std::vector<Model> models_;
@@ -193,6 +213,8 @@ class Scene {
   double dt_;
   double max_energy_growth_ = std::numeric_limits<double>::infinity();
   std::unique_ptr<contact::ContactStep> contact_;  // null: no body collides
+  ContactSetup contact_setup_;                      // the environment, settings and shape of each body (for edits)
+  bool record_contacts_ = false;
   std::vector<std::size_t> collider_of_;            // body → its index among the colliders, or kNoCollider
   std::vector<char> collider_running_;              // per collider, reused
   std::vector<StepStatus> collider_failed_;         // per collider, reused

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -159,6 +160,16 @@ class World {
   /// topic wrenches arriving from then on. Refused for non-finite or negative values.
   CommandReply setForceModel(std::size_t body, const ForceModel& forces, Nanoseconds arrival);
   CommandReply setWrenchTimeout(double seconds, Nanoseconds arrival);
+
+  // ----- edits of the body list (world_edits.cpp): at once, on the state of stamp(), not queued -----
+  /// Appends a body (Scene::addBody) with no input; its index, the last, goes to `index` when accepted.
+  /// Refused, the world unchanged, for a non-finite state, an invalid shape or a colliding body placed
+  /// inside another body or the environment (the message says which).
+  CommandReply addBody(const BodyDefinition& body, const std::optional<CollisionShape>& shape,
+                       std::size_t* index = nullptr);
+  /// Removes a body with its inputs and its waiting commands; the later bodies, their inputs and their
+  /// waiting commands move down one index. Refused for the only body.
+  CommandReply removeBody(std::size_t body);
 
   // ----- queries -----
   const Scene& scene() const { return scene_; }

@@ -60,6 +60,12 @@ class ContactStep {
   /// Forgets the touching pairs, warm starts and figures (after a reset or a state set from outside).
   void restart(const std::vector<State>& states);
 
+  /// A body that does not collide left the scene at `scene_body`: the colliders after it move down one scene
+  /// index (their contact memory stays).
+  void renumberAfterRemoval(std::size_t scene_body) {
+    for (std::size_t& body : colliders_) body -= body > scene_body ? 1 : 0;
+  }
+
   /// Wakes the island colliding body k sleeps in, if it sleeps (its input or force model changed).
   void wake(std::size_t k);
 

@@ -23,7 +23,10 @@ from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3, Wrench, W
 from nav_msgs.msg import Odometry
 from std_srvs.srv import Empty
 
-from rigid_body_sim.srv import ApplyWrench, ApplyWrenchRequest, GetProperties, GetState, SetState, Step
+import yaml
+
+from rigid_body_sim.srv import (ApplyWrench, ApplyWrenchRequest, GetProperties, GetState, ListBodies, Remove,
+                                SetState, Spawn, Step)
 
 
 class SimulatorError(AssertionError):
@@ -133,6 +136,28 @@ class Simulator:
         reply = self._service("set_state", SetState, body)(pose, Twist(_vector(linear), _vector(angular)), twist_frame)
         if not reply.success:
             raise SimulatorError("set_state: %s" % reply.message)
+
+    # Scene edits ---------------------------------------------------------------------------------------
+    def spawn(self, body):
+        """Adds a body at once: `body` is a dict (or YAML text) with the keys of one item of ~bodies, at least
+        its name. Raises SimulatorError with the node's reason if it refused (a bad key, a name taken, an
+        overlap)."""
+        text = body if isinstance(body, str) else yaml.safe_dump(body, default_flow_style=True)
+        reply = self._service("spawn", Spawn, body="")(text)
+        if not reply.success:
+            raise SimulatorError(reply.message)
+        return reply
+
+    def remove(self, name):
+        """Removes the body called `name` at once; SimulatorError with the node's reason if refused."""
+        reply = self._service("remove", Remove, body="")(name)
+        if not reply.success:
+            raise SimulatorError(reply.message)
+        return reply
+
+    def list_bodies(self):
+        """The ListBodies reply: names, body_frames, shapes, masses, colliding, in the scene's order."""
+        return self._service("list_bodies", ListBodies, body="")()
 
     # Inputs --------------------------------------------------------------------------------------------
     def apply_wrench(self, force, torque=(0.0, 0.0, 0.0), frame="world", duration=0.0, body=None):

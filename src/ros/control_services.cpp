@@ -16,6 +16,7 @@ ControlServices::ControlServices(ros::NodeHandle& nh, const NodeConfig& config, 
                                  WrenchInput& wrench_input, std::function<rigid_body::Nanoseconds()> now,
                                  std::function<void()> clock_moved)
     : config_(config),
+      nh_(nh),
       world_(world),
       wrench_input_(wrench_input),
       now_(std::move(now)),
@@ -28,25 +29,33 @@ ControlServices::ControlServices(ros::NodeHandle& nh, const NodeConfig& config, 
       nh.advertiseService("step", &ControlServices::onStep, this),
       nh.advertiseService("clear_wrenches", &ControlServices::onClearWrenches, this),
   };
+  for (std::size_t body = 0; body < config.bodies.size(); ++body) addBody(body);
+}
+
+void ControlServices::addBody(std::size_t body) {
   using rigid_body_sim::ApplyWrench;
   using rigid_body_sim::GetProperties;
   using rigid_body_sim::GetState;
   using rigid_body_sim::SetState;
-  const bool body_services = config.publish.body_services && config.publish.per_body_topics;
-  for (std::size_t body = 0; body < config.bodies.size() && body_services; ++body) {
-    const BodyConfig& body_config = config.bodies[body];
-    services_.push_back(nh.advertiseService<GetState::Request, GetState::Response>(
-        body_config.topic("get_state"), [this, body](auto& req, auto& res) { return onGetState(body, req, res); }));
-    services_.push_back(nh.advertiseService<GetProperties::Request, GetProperties::Response>(
-        body_config.topic("get_properties"),
-        [this, body](auto& req, auto& res) { return onGetProperties(body, req, res); }));
-    services_.push_back(nh.advertiseService<SetState::Request, SetState::Response>(
-        body_config.topic("set_state"), [this, body](auto& req, auto& res) { return onSetState(body, req, res); }));
-    if (!body_config.wrench_input) continue;  // no input term: no apply_wrench
-    services_.push_back(nh.advertiseService<ApplyWrench::Request, ApplyWrench::Response>(
-        body_config.topic("apply_wrench"), [this, body](auto& req, auto& res) { return onApplyWrench(body, req, res); }));
-  }
+  if (!config_.publish.body_services || !config_.publish.per_body_topics) return;
+  const BodyConfig& body_config = config_.bodies[body];
+  // The callbacks read the body's index where the list keeps it up to date.
+  auto& own = body_services_.insert(body);
+  std::vector<ros::ServiceServer>& servers = own.handles;
+  servers.push_back(nh_.advertiseService<GetState::Request, GetState::Response>(
+      body_config.topic("get_state"), [this, &own](auto& req, auto& res) { return onGetState(own.body, req, res); }));
+  servers.push_back(nh_.advertiseService<GetProperties::Request, GetProperties::Response>(
+      body_config.topic("get_properties"),
+      [this, &own](auto& req, auto& res) { return onGetProperties(own.body, req, res); }));
+  servers.push_back(nh_.advertiseService<SetState::Request, SetState::Response>(
+      body_config.topic("set_state"), [this, &own](auto& req, auto& res) { return onSetState(own.body, req, res); }));
+  if (!body_config.wrench_input) return;  // no input term: no apply_wrench
+  servers.push_back(nh_.advertiseService<ApplyWrench::Request, ApplyWrench::Response>(
+      body_config.topic("apply_wrench"),
+      [this, &own](auto& req, auto& res) { return onApplyWrench(own.body, req, res); }));
 }
+
+void ControlServices::removeBody(std::size_t body) { body_services_.erase(body); }
 
 bool ControlServices::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   if (world_.reset(now_()).accepted) ROS_INFO("rigid_body_node: reset to the initial state, wrenches cleared");

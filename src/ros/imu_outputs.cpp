@@ -2,6 +2,7 @@
 
 #include <tf2_eigen/tf2_eigen.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "rigid_body_sim/imu.hpp"
@@ -25,39 +26,48 @@ void setDiagonal(boost::array<double, 9>& covariance, double stddev) {
 
 }  // namespace
 
-ImuOutputs::ImuOutputs(ros::NodeHandle& nh, const NodeConfig& config) : config_(config) {
-  const uint32_t queue = config.lockstep ? 100 : 10;
-  for (std::size_t body = 0; body < config.bodies.size(); ++body) {
-    const std::optional<ImuConfig>& imu = config.bodies[body].imu;
-    if (!imu) continue;
-    const double period = 1.0 / imu->rate;
-    const std::uint64_t seed = static_cast<std::uint64_t>(static_cast<std::int64_t>(imu->seed));
-    sensors_.push_back(std::unique_ptr<Sensor>(new Sensor{
-        body, &*imu, nh.advertise<sensor_msgs::Imu>(config.bodies[body].topic("imu"), queue), OutputSchedule(),
-        rigid_body::SensorNoiseModel(imu->gyro, period, seed + kGyroStream),
-        rigid_body::SensorNoiseModel(imu->accel, period, seed + kAccelStream),
-        // Orientation noise is white per sample: a density of σ √Δt gives the sample's σ.
-        rigid_body::SensorNoiseModel({imu->orientation_stddev * std::sqrt(period), 0.0}, period, seed + kOrientationStream),
-        sensor_msgs::Imu()}));
-    Sensor& sensor = *sensors_.back();
-    sensor.message.header.frame_id = imu->frame;
-    // The covariance of one sample's white part (the bias is not in it: it is a slowly changing offset).
-    setDiagonal(sensor.message.angular_velocity_covariance, sensor.gyro_noise.whiteStddev());
-    setDiagonal(sensor.message.linear_acceleration_covariance, sensor.accel_noise.whiteStddev());
-    setDiagonal(sensor.message.orientation_covariance, imu->orientation_stddev);
-  }
+ImuOutputs::ImuOutputs(ros::NodeHandle& nh, const NodeConfig& config) : config_(config), nh_(nh) {
+  for (std::size_t body = 0; body < config.bodies.size(); ++body) addBody(body);
+}
+
+void ImuOutputs::addBody(std::size_t body) {
+  for (const std::unique_ptr<Sensor>& sensor : sensors_) sensor->body += sensor->body >= body ? 1 : 0;
+  const std::optional<ImuConfig>& imu = config_.bodies[body].imu;
+  if (!imu) return;
+  const uint32_t queue = config_.lockstep ? 100 : 10;
+  const double period = 1.0 / imu->rate;
+  const std::uint64_t seed = static_cast<std::uint64_t>(static_cast<std::int64_t>(imu->seed));
+  sensors_.push_back(std::unique_ptr<Sensor>(new Sensor{
+      body, *imu, nh_.advertise<sensor_msgs::Imu>(config_.bodies[body].topic("imu"), queue), OutputSchedule(),
+      rigid_body::SensorNoiseModel(imu->gyro, period, seed + kGyroStream),
+      rigid_body::SensorNoiseModel(imu->accel, period, seed + kAccelStream),
+      // Orientation noise is white per sample: a density of σ √Δt gives the sample's σ.
+      rigid_body::SensorNoiseModel({imu->orientation_stddev * std::sqrt(period), 0.0}, period, seed + kOrientationStream),
+      sensor_msgs::Imu()}));
+  Sensor& sensor = *sensors_.back();
+  sensor.message.header.frame_id = imu->frame;
+  // The covariance of one sample's white part (the bias is not in it: it is a slowly changing offset).
+  setDiagonal(sensor.message.angular_velocity_covariance, sensor.gyro_noise.whiteStddev());
+  setDiagonal(sensor.message.linear_acceleration_covariance, sensor.accel_noise.whiteStddev());
+  setDiagonal(sensor.message.orientation_covariance, imu->orientation_stddev);
+}
+
+void ImuOutputs::removeBody(std::size_t body) {
+  sensors_.erase(std::remove_if(sensors_.begin(), sensors_.end(), [body](const auto& s) { return s->body == body; }),
+                 sensors_.end());
+  for (const std::unique_ptr<Sensor>& sensor : sensors_) sensor->body -= sensor->body > body ? 1 : 0;
 }
 
 std::vector<geometry_msgs::TransformStamped> ImuOutputs::sensorFrames(const ros::Time& stamp) const {
   std::vector<geometry_msgs::TransformStamped> frames;
   for (const std::unique_ptr<Sensor>& sensor : sensors_) {
     Eigen::Isometry3d X_PS = Eigen::Isometry3d::Identity();
-    X_PS.linear() = sensor->config->orientation.toRotationMatrix();
-    X_PS.translation() = sensor->config->position;
+    X_PS.linear() = sensor->config.orientation.toRotationMatrix();
+    X_PS.translation() = sensor->config.position;
     geometry_msgs::TransformStamped frame = tf2::eigenToTransform(Eigen::Affine3d(X_PS.matrix()));
     frame.header.stamp = stamp;
     frame.header.frame_id = config_.bodies[sensor->body].body_frame;
-    frame.child_frame_id = sensor->config->frame;
+    frame.child_frame_id = sensor->config.frame;
     frames.push_back(frame);
   }
   return frames;
@@ -65,7 +75,7 @@ std::vector<geometry_msgs::TransformStamped> ImuOutputs::sensorFrames(const ros:
 
 void ImuOutputs::publish(const rigid_body::World& world) {
   for (const std::unique_ptr<Sensor>& sensor : sensors_) {
-    if (sensor->schedule.due(world.stamp(), rigid_body::toNanoseconds(1.0 / sensor->config->rate))) {
+    if (sensor->schedule.due(world.stamp(), rigid_body::toNanoseconds(1.0 / sensor->config.rate))) {
       publishSensor(world, *sensor);
     }
   }
@@ -80,7 +90,7 @@ void ImuOutputs::publishSensor(const rigid_body::World& world, Sensor& sensor) {
       scene.collides(body) ? rigid_body::contactWrench(scene.contacts(body), scene.state(body).p_WB, scene.dt())
                            : rigid_body::Wrench();
   const rigid_body::ImuReading reading =
-      rigid_body::imuReading(scene.model(body), scene.state(body), scene.input(body), contact, sensor.config->mount);
+      rigid_body::imuReading(scene.model(body), scene.state(body), scene.input(body), contact, sensor.config.mount);
   // The noise is drawn even when the reading is withheld, so that the sequence depends on the samples only.
   const Eigen::Vector3d gyro = reading.angular_velocity_S + sensor.gyro_noise.next();
   const Eigen::Vector3d accel = reading.specific_force_S + sensor.accel_noise.next();

@@ -77,8 +77,27 @@ Markers::Markers(ros::NodeHandle& nh, const NodeConfig& config) : config_(config
   publisher_ = nh.advertise<visualization_msgs::MarkerArray>(
       "markers", 1, [this](const ros::SingleSubscriberPublisher&) { ++subscribers_; },
       [this](const ros::SingleSubscriberPublisher&) { --subscribers_; });
+  rebuild();
+}
+
+void Markers::bodiesChanged(std::size_t bodies_before) {
+  if (config_.bodies.size() == bodies_before + 1) {
+    // A spawn appends: its marker goes after the other bodies' (a spawn costs the same in any scene).
+    array_.markers.insert(array_.markers.begin() + static_cast<std::ptrdiff_t>(bodies_before),
+                          bodyMarker(bodies_before));
+    ++contact_points_;
+    return;
+  }
+  // Ids are body indices: after a removal the last ones are free, and rviz keeps a marker until told.
+  for (std::size_t id = config_.bodies.size(); id < bodies_before; ++id) removed_ids_.push_back(static_cast<int>(id));
+  rebuild();
+}
+
+void Markers::rebuild() {
+  array_.markers.clear();
   addBodies();
   addEnvironment();
+  const NodeConfig& config = config_;
   // Contact points and normals, in the world frame, refilled each time (empty without contact).
   visualization_msgs::Marker points;
   points.header.frame_id = config.world_frame;
@@ -99,48 +118,50 @@ Markers::Markers(ros::NodeHandle& nh, const NodeConfig& config) : config_(config
 }
 
 void Markers::addBodies() {
-  for (std::size_t body = 0; body < config_.bodies.size(); ++body) {
-    const BodyConfig& b = config_.bodies[body];
-    visualization_msgs::Marker marker;
-    marker.header.frame_id = b.body_frame;  // it moves with tf: no per-tick pose
-    marker.ns = "bodies";
-    marker.id = static_cast<int>(body);
-    marker.color = bodyColour(body);
-    marker.pose.orientation.w = 1.0;
-    marker.frame_locked = true;
-    if (b.hasShape(rigid_body::ShapeType::kMesh)) {
-      // The mesh as its file has it: its own frame sits at X_BM in the body frame, scaled to metres.
-      marker.type = visualization_msgs::Marker::MESH_RESOURCE;
-      marker.mesh_resource = b.mesh_uri.rfind("package://", 0) == 0 ? b.mesh_uri : "file://" + b.mesh_path;
-      marker.scale.x = marker.scale.y = marker.scale.z = b.mesh_scale;
-      setPose(b.X_MB.inverse(), marker.pose);
-    } else if (b.mass_source == MassSource::kUrdf && (b.visual || !b.visual_mesh.empty())) {
-      // The link's <visual>, posed in the link frame, which is the published frame.
-      if (b.visual) {
-        primitive(b.visual->type, b.visual->size, marker);
-        setPose(b.visual->pose, marker.pose);
-      } else {
-        marker.type = visualization_msgs::Marker::MESH_RESOURCE;
-        marker.mesh_resource = b.visual_mesh;
-        marker.scale.x = marker.scale.y = marker.scale.z = b.visual_mesh_scale;
-        setPose(b.X_PV, marker.pose);
-      }
-    } else if (b.mass_source != MassSource::kShape) {
-      // No shape to draw: the box with the same principal moments, at the centre of mass along the principal
-      // axes (in the published frame: X_P,principal = X_BP⁻¹ X_B,principal).
-      marker.type = visualization_msgs::Marker::CUBE;
-      const Eigen::Vector3d size = equivalentBox(b.model.mass);
-      marker.scale.x = size.x(), marker.scale.y = size.y(), marker.scale.z = size.z();
-      Eigen::Isometry3d X_B_principal = Eigen::Isometry3d::Identity();
-      X_B_principal.linear() = b.model.mass.principalAxes();
-      setPose(b.X_BP.inverse() * X_B_principal, marker.pose);
+  for (std::size_t body = 0; body < config_.bodies.size(); ++body) array_.markers.push_back(bodyMarker(body));
+}
+
+visualization_msgs::Marker Markers::bodyMarker(std::size_t body) const {
+  const BodyConfig& b = config_.bodies[body];
+  visualization_msgs::Marker marker;
+  marker.header.frame_id = b.body_frame;  // it moves with tf: no per-tick pose
+  marker.ns = "bodies";
+  marker.id = static_cast<int>(body);
+  marker.color = bodyColour(body);
+  marker.pose.orientation.w = 1.0;
+  marker.frame_locked = true;
+  if (b.hasShape(rigid_body::ShapeType::kMesh)) {
+    // The mesh as its file has it: its own frame sits at X_BM in the body frame, scaled to metres.
+    marker.type = visualization_msgs::Marker::MESH_RESOURCE;
+    marker.mesh_resource = b.mesh_uri.rfind("package://", 0) == 0 ? b.mesh_uri : "file://" + b.mesh_path;
+    marker.scale.x = marker.scale.y = marker.scale.z = b.mesh_scale;
+    setPose(b.X_MB.inverse(), marker.pose);
+  } else if (b.mass_source == MassSource::kUrdf && (b.visual || !b.visual_mesh.empty())) {
+    // The link's <visual>, posed in the link frame, which is the published frame.
+    if (b.visual) {
+      primitive(b.visual->type, b.visual->size, marker);
+      setPose(b.visual->pose, marker.pose);
     } else {
-      Eigen::Vector3d size = Eigen::Vector3d::Zero();
-      for (std::size_t i = 0; i < b.size.size() && i < 3; ++i) size[static_cast<int>(i)] = b.size[i];
-      primitive(b.shape, size, marker);
+      marker.type = visualization_msgs::Marker::MESH_RESOURCE;
+      marker.mesh_resource = b.visual_mesh;
+      marker.scale.x = marker.scale.y = marker.scale.z = b.visual_mesh_scale;
+      setPose(b.X_PV, marker.pose);
     }
-    array_.markers.push_back(marker);
+  } else if (b.mass_source != MassSource::kShape) {
+    // No shape to draw: the box with the same principal moments, at the centre of mass along the principal
+    // axes (in the published frame: X_P,principal = X_BP⁻¹ X_B,principal).
+    marker.type = visualization_msgs::Marker::CUBE;
+    const Eigen::Vector3d size = equivalentBox(b.model.mass);
+    marker.scale.x = size.x(), marker.scale.y = size.y(), marker.scale.z = size.z();
+    Eigen::Isometry3d X_B_principal = Eigen::Isometry3d::Identity();
+    X_B_principal.linear() = b.model.mass.principalAxes();
+    setPose(b.X_BP.inverse() * X_B_principal, marker.pose);
+  } else {
+    Eigen::Vector3d size = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < b.size.size() && i < 3; ++i) size[static_cast<int>(i)] = b.size[i];
+    primitive(b.shape, size, marker);
   }
+  return marker;
 }
 
 void Markers::addEnvironment() {
@@ -191,6 +212,17 @@ const visualization_msgs::MarkerArray& Markers::build(const rigid_body::World& w
   // rviz refuses an empty list: an empty one is deleted (same id) until contacts come back.
   points.action = points.points.empty() ? visualization_msgs::Marker::DELETE : visualization_msgs::Marker::ADD;
   normals.action = points.action;
+  // The removed bodies' markers, deleted once, after the others.
+  array_.markers.resize(contact_points_ + 2);
+  for (int id : removed_ids_) {
+    visualization_msgs::Marker gone;
+    gone.header.frame_id = config_.world_frame;
+    gone.header.stamp = stamp;
+    gone.ns = "bodies";
+    gone.id = id;
+    gone.action = visualization_msgs::Marker::DELETE;
+    array_.markers.push_back(gone);
+  }
   return array_;
 }
 
@@ -199,6 +231,7 @@ void Markers::publish(const rigid_body::World& world) {
   // On a grid of the marker period in simulated time (OutputSchedule says how a late tick and a rewind go).
   if (!schedule_.due(world.stamp(), rigid_body::toNanoseconds(1.0 / config_.marker_rate))) return;
   publisher_.publish(build(world, toRosTime(world.stamp())));
+  removed_ids_.clear();
 }
 
 }  // namespace rigid_body_ros

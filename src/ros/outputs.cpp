@@ -44,24 +44,18 @@ bool finite(const rigid_body_sim::RigidBodyState& m) {
 }  // namespace
 
 Outputs::Outputs(ros::NodeHandle& nh, const NodeConfig& config, OwnTransforms& own_transforms)
-    : config_(config), channels_(config.bodies.size()), own_transforms_(own_transforms) {
+    : config_(config),
+      nh_(nh),
+      // In lockstep at full speed the outputs come in bursts: a deeper queue lets subscribers keep up longer
+      // (a subscriber slower than the simulation still misses messages; set real_time_factor then).
+      queue_(config.lockstep ? 100 : 10),
+      own_transforms_(own_transforms) {
   if (config.publish.tf) own_transforms_.advertise(nh);
-  // In lockstep at full speed the outputs come in bursts: a deeper queue lets subscribers keep up longer
-  // (a subscriber slower than the simulation still misses messages; set real_time_factor then).
-  const uint32_t queue = config.lockstep ? 100 : 10;
-  for (std::size_t body = 0; body < channels_.size(); ++body) {
-    Channel& channel = channels_[body];
-    // Ground truth: the covariances stay zero.
-    channel.odom_message.header.frame_id = config.world_frame;
-    channel.odom_message.child_frame_id = config.bodies[body].body_frame;
-    if (config.publish.per_body_topics) advertise(nh, body, queue);
-    if (config.publish.tf) {
-      geometry_msgs::TransformStamped transform;
-      transform.header.frame_id = config.world_frame;
-      transform.child_frame_id = config.bodies[body].body_frame;
-      transforms_.push_back(transform);
-    }
+  const uint32_t queue = queue_;
+  if (config.publish.state) {
+    states_message_.header.frame_id = config.world_frame;
   }
+  for (std::size_t body = 0; body < config.bodies.size(); ++body) addBody(body);
   if (!config.publish.per_body_topics && config.publish.odom) {
     // One topic for the whole scene, filled only while someone listens.
     array_message_.header.frame_id = config.world_frame;
@@ -71,10 +65,6 @@ Outputs::Outputs(ros::NodeHandle& nh, const NodeConfig& config, OwnTransforms& o
   }
   if (config.publish.state) {
     // One topic for the whole scene in every scene (as Gazebo's model_states), filled only while listened to.
-    states_message_.header.frame_id = config.world_frame;
-    for (const BodyConfig& body : config.bodies) states_message_.name.push_back(body.body_frame);
-    states_message_.pose.resize(config.bodies.size());
-    states_message_.twist.resize(config.bodies.size());
     states_publisher_ = nh.advertise<rigid_body_sim::BodyStates>(
         "bodies/states", queue, [this](const ros::SingleSubscriberPublisher&) { ++states_subscribers_; },
         [this](const ros::SingleSubscriberPublisher&) { --states_subscribers_; });
@@ -82,19 +72,54 @@ Outputs::Outputs(ros::NodeHandle& nh, const NodeConfig& config, OwnTransforms& o
   if (config.lockstep || config.publish.clock) clock_publisher_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
 }
 
-void Outputs::advertise(ros::NodeHandle& nh, std::size_t body, uint32_t queue) {
-  Channel& channel = channels_[body];
+void Outputs::addBody(std::size_t body) {
+  channels_.insert(channels_.begin() + static_cast<std::ptrdiff_t>(body), std::make_unique<Channel>());
+  Channel& channel = *channels_[body];
   const BodyConfig& config = config_.bodies[body];
+  // Ground truth: the covariances stay zero.
+  channel.odom_message.header.frame_id = config_.world_frame;
+  channel.odom_message.child_frame_id = config.body_frame;
+  if (config_.publish.per_body_topics) advertise(channel, config, body);
+  if (config_.publish.tf) {
+    geometry_msgs::TransformStamped transform;
+    transform.header.frame_id = config_.world_frame;
+    transform.child_frame_id = config.body_frame;
+    transforms_.insert(transforms_.begin() + static_cast<std::ptrdiff_t>(body), transform);
+  }
+  if (config_.publish.state) {
+    const auto at = static_cast<std::ptrdiff_t>(body);
+    states_message_.name.insert(states_message_.name.begin() + at, config.body_frame);
+    states_message_.pose.insert(states_message_.pose.begin() + at, geometry_msgs::Pose());
+    states_message_.twist.insert(states_message_.twist.begin() + at, geometry_msgs::Twist());
+  }
+}
+
+void Outputs::removeBody(std::size_t body) {
+  const auto at = static_cast<std::ptrdiff_t>(body);
+  channels_.erase(channels_.begin() + at);  // its publishers shut down with it
+  if (config_.publish.tf) transforms_.erase(transforms_.begin() + at);
+  if (config_.publish.state) {
+    states_message_.name.erase(states_message_.name.begin() + at);
+    states_message_.pose.erase(states_message_.pose.begin() + at);
+    states_message_.twist.erase(states_message_.twist.begin() + at);
+  }
+}
+
+void Outputs::advertise(Channel& channel, const BodyConfig& config, std::size_t body) {
+  ros::NodeHandle& nh = nh_;
+  const uint32_t queue = queue_;
   channel.state_message.header.frame_id = config_.world_frame;
   channel.state_message.child_frame_id = config.body_frame;
   channel.applied_wrench_message.header.frame_id = config_.world_frame;
-  // Counts a publisher's subscribers in `count` (channels_ is sized once, so the channel stays where it is).
+  // Counts a publisher's subscribers in `count` (each channel has its own place on the heap: an edit of the
+  // body list moves the pointers, not the channels).
   const auto advertise = [&](auto message, const std::string& topic, int Channel::*count) {
-    const ros::SubscriberStatusCallback connected = [this, body, count](const ros::SingleSubscriberPublisher&) {
-      ++(channels_[body].*count);
+    Channel* const counted = &channel;
+    const ros::SubscriberStatusCallback connected = [counted, count](const ros::SingleSubscriberPublisher&) {
+      ++(counted->*count);
     };
-    const ros::SubscriberStatusCallback disconnected = [this, body, count](const ros::SingleSubscriberPublisher&) {
-      --(channels_[body].*count);
+    const ros::SubscriberStatusCallback disconnected = [counted, count](const ros::SingleSubscriberPublisher&) {
+      --(counted->*count);
     };
     return nh.advertise<decltype(message)>(config.topic(topic), queue, connected, disconnected);
   };
@@ -118,8 +143,8 @@ void Outputs::advertise(ros::NodeHandle& nh, std::size_t body, uint32_t queue) {
 }
 
 void Outputs::setNoise(const NoiseConfig& noise) {
-  for (Channel& channel : channels_) {
-    if (channel.noise) channel.noise->setStddevs(noise);
+  for (const auto& channel : channels_) {
+    if (channel->noise) channel->noise->setStddevs(noise);
   }
 }
 
@@ -149,7 +174,7 @@ void Outputs::publish(const rigid_body::World& world) {
   const ros::Time stamp = toRosTime(world.stamp());
   if (world.counters().resets != resets_seen_) {
     resets_seen_ = world.counters().resets;
-    for (Channel& channel : channels_) channel.max_norm_error = 0.0;
+    for (const auto& channel : channels_) channel->max_norm_error = 0.0;
   }
   const rigid_body::Nanoseconds now = world.stamp();
   const auto dueAt = [now](OutputSchedule& schedule, double rate) {
@@ -190,7 +215,7 @@ void Outputs::publishArray(const rigid_body::World& world, const ros::Time& stam
   array_message_.header.stamp = stamp;
   array_message_.bodies.resize(channels_.size());
   for (std::size_t body = 0; body < channels_.size(); ++body) {
-    nav_msgs::Odometry& odom = channels_[body].odom_message;
+    nav_msgs::Odometry& odom = channels_[body]->odom_message;
     odom.header.stamp = stamp;
     if (config_.bodies[body].published_offset) {
       fillOdometry(publishedFrame(scene.model(body).mass, scene.state(body), config_.bodies[body].X_BP), odom);
@@ -209,7 +234,7 @@ void Outputs::publishArray(const rigid_body::World& world, const ros::Time& stam
 }
 
 void Outputs::publishContacts(const rigid_body::World& world, std::size_t body, const ros::Time& stamp) {
-  Channel& channel = channels_[body];
+  Channel& channel = *channels_[body];
   rigid_body_sim::Contacts& message = channel.contacts_message;
   message.header.stamp = stamp;
   const std::vector<rigid_body::Contact>& contacts = world.scene().contacts(body);
@@ -229,7 +254,7 @@ void Outputs::publishContacts(const rigid_body::World& world, std::size_t body, 
 }
 
 void Outputs::publishBody(const rigid_body::World& world, std::size_t body, const ros::Time& stamp, const Due& due) {
-  Channel& channel = channels_[body];
+  Channel& channel = *channels_[body];
   if (channel.contacts_subscribers > 0) publishContacts(world, body, stamp);
   const rigid_body::Scene& scene = world.scene();
   const rigid_body::State& state = scene.state(body);  // finite: the scene keeps the last good state

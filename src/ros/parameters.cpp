@@ -413,6 +413,14 @@ NodeConfig parseConfig(const XmlRpcValue& params, const ParameterReader& reader)
   return config;
 }
 
+BodyConfig parseBodyItem(const XmlRpcValue& item, const NodeConfig& scene, std::vector<std::string>& unknown,
+                         const ParameterReader& reader) {
+  XmlRpcValue params;
+  params["bodies"].setSize(1);
+  params["bodies"][0] = item;
+  return parseBodies(params, scene, unknown, reader).front();
+}
+
 bool isKnownParameter(const std::string& key) {
   const std::size_t slash = key.find('/');
   if (slash == std::string::npos) {

@@ -64,7 +64,9 @@ SimulatorNode::SimulatorNode(const ros::NodeHandle& nh, const ros::NodeHandle& p
                   outputs_.publishClock(world_);
                   publish();
                 }),
-      live_(private_nh_, config_, world_, outputs_, [this] { return now(); }) {}
+      live_(private_nh_, config_, world_, outputs_, [this] { return now(); }) {
+  advertiseEditServices();
+}
 
 void SimulatorNode::guarded(const std::function<void()>& tick) {
   // A tick must not take the node down: an exception from a library's own arithmetic (ros::Time, tf2,
@@ -85,24 +87,7 @@ void SimulatorNode::start(const ros::Time& start_time) {
   // A colliding body's contacts are kept for its state (their count) and its contacts topic.
   world_.setRecordContacts(true);
   ROS_INFO("rigid_body_node: %s", config_.describe().c_str());
-  for (std::size_t body = 0; body < config_.bodies.size(); ++body) {
-    const BodyConfig& config = config_.bodies[body];
-    // Once, at start-up: what this body's step evaluates (the rest of Ẏ is left out: see StepTerms).
-    rigid_body_sim::GetProperties::Response properties;
-    fillProperties(config, rigid_body::integratorName(world_.scene().integratorType()), world_.scene().terms(body),
-                   properties);
-    ROS_INFO("rigid_body_node: body %s (%s): %s; step assembled from %s",
-             config.name.empty() ? "(flat)" : config.name.c_str(), config.body_frame.c_str(),
-             describeProperties(properties).c_str(), describeBodyStep(world_.scene(), body, config_).c_str());
-    if (config.mesh_path.empty()) continue;
-    const Eigen::Vector3d& c = config.X_MB.translation();
-    const Eigen::Quaterniond q_MB(config.X_MB.linear());
-    ROS_INFO("rigid_body_node: body frame %s = mesh frame moved to the centre of mass (%g, %g, %g) m and turned by "
-             "q = [%g, %g, %g, %g] (x, y, z, w)%s",
-             config.body_frame.c_str(), c.x(), c.y(), c.z(), q_MB.x(), q_MB.y(), q_MB.z(), q_MB.w(),
-             config.mesh_frame.empty() ? "" : ("; published as tf " + config.body_frame + " -> " + config.mesh_frame).c_str());
-    for (const std::string& warning : config.mesh_warnings) ROS_WARN("rigid_body_node: %s", warning.c_str());
-  }
+  for (std::size_t body = 0; body < config_.bodies.size(); ++body) logBody(body);
   outputs_.publishStaticFrames(start_time, imu_.sensorFrames(start_time));
   if (config_.lockstep) return;
   const double period = 1.0 / config_.rate;

@@ -2,6 +2,8 @@
 
 #include <tf2_eigen/tf2_eigen.h>
 
+#include <algorithm>
+
 #include "rigid_body_sim/ros/conversions.hpp"
 #include "rigid_body_sim/ros/time_conversion.hpp"
 #include "rigid_body_sim/wrench_limits.hpp"
@@ -42,26 +44,53 @@ WrenchInput::WrenchInput(ros::NodeHandle& nh, const NodeConfig& config, rigid_bo
       world_(world),
       now_(std::move(now)),
       foreign_transforms_(tf_buffer_, own_transforms),
-      messages_(config.bodies.size(), 0),
-      refused_messages_(config.bodies.size(), 0) {
-  for (std::size_t body = 0; body < config.bodies.size(); ++body) body_by_frame_[config.bodies[body].body_frame] = body;
+      nh_(nh) {
   if (!config.publish.per_body_topics) {
     // One subscriber for the whole scene; the bodies found by name.
-    for (std::size_t body = 0; body < config.bodies.size(); ++body) body_by_name_[config.bodies[body].name] = body;
-    subscribers_.push_back(nh.subscribe<rigid_body_sim::BodyWrenches>(
-        "bodies/wrench", kQueueSize, [this](const rigid_body_sim::BodyWrenches::ConstPtr& m) { onBodyWrenches(*m); }));
-    return;
+    scene_subscriber_ = nh.subscribe<rigid_body_sim::BodyWrenches>(
+        "bodies/wrench", kQueueSize, [this](const rigid_body_sim::BodyWrenches::ConstPtr& m) { onBodyWrenches(*m); });
   }
-  for (std::size_t body = 0; body < config.bodies.size(); ++body) {
-    const BodyConfig& body_config = config.bodies[body];
-    if (!body_config.wrench_input) continue;  // no input term: no subscriber
-    subscribers_.push_back(nh.subscribe<geometry_msgs::WrenchStamped>(
-        body_config.topic("wrench"), kQueueSize,
-        [this, body](const geometry_msgs::WrenchStamped::ConstPtr& m) { onWrench(body, *m); }));
-    subscribers_.push_back(nh.subscribe<geometry_msgs::Wrench>(
-        body_config.topic("wrench_unstamped"), kQueueSize,
-        [this, body](const geometry_msgs::Wrench::ConstPtr& m) { onWrenchUnstamped(body, *m); }));
+  for (std::size_t body = 0; body < config.bodies.size(); ++body) addBody(body);
+}
+
+void WrenchInput::addBody(std::size_t body) {
+  const BodyConfig& body_config = config_.bodies[body];
+  // The maps name bodies by index: those from `body` on move up one (none for a spawn, which appends).
+  for (auto* map : {&body_by_frame_, &body_by_name_}) {
+    if (body == messages_.size()) break;
+    for (auto& entry : *map) entry.second += entry.second >= body ? 1 : 0;
   }
+  body_by_frame_[body_config.body_frame] = body;
+  if (!config_.publish.per_body_topics) body_by_name_[body_config.name] = body;
+  const auto at = static_cast<std::ptrdiff_t>(body);
+  messages_.insert(messages_.begin() + at, 0);
+  refused_messages_.insert(refused_messages_.begin() + at, 0);
+  if (!config_.publish.per_body_topics || !body_config.wrench_input) return;  // no input term: no subscriber
+  // The callbacks read the body's index where the list keeps it up to date.
+  auto& own = topics_.insert(body);
+  own.handles.stamped = nh_.subscribe<geometry_msgs::WrenchStamped>(
+      body_config.topic("wrench"), kQueueSize,
+      [this, &own](const geometry_msgs::WrenchStamped::ConstPtr& m) { onWrench(own.body, *m); });
+  own.handles.unstamped = nh_.subscribe<geometry_msgs::Wrench>(
+      body_config.topic("wrench_unstamped"), kQueueSize,
+      [this, &own](const geometry_msgs::Wrench::ConstPtr& m) { onWrenchUnstamped(own.body, *m); });
+}
+
+void WrenchInput::removeBody(std::size_t body) {
+  topics_.erase(body);  // its subscribers shut down (roscpp drops their queued callbacks)
+  for (auto* map : {&body_by_frame_, &body_by_name_}) {
+    for (auto entry = map->begin(); entry != map->end();) {
+      if (entry->second == body) {
+        entry = map->erase(entry);
+        continue;
+      }
+      entry->second -= entry->second > body ? 1 : 0;
+      ++entry;
+    }
+  }
+  const auto at = static_cast<std::ptrdiff_t>(body);
+  messages_.erase(messages_.begin() + at);
+  refused_messages_.erase(refused_messages_.begin() + at);
 }
 
 bool WrenchInput::accept(const geometry_msgs::Wrench& wrench) {

@@ -15,6 +15,7 @@
 #include "rigid_body_sim/GetState.h"
 #include "rigid_body_sim/SetState.h"
 #include "rigid_body_sim/Step.h"
+#include "rigid_body_sim/ros/body_list.hpp"
 #include "rigid_body_sim/ros/parameters.hpp"
 #include "rigid_body_sim/ros/wrench_input.hpp"
 #include "rigid_body_sim/world.hpp"
@@ -27,6 +28,11 @@ class ControlServices {
   /// the world's own clock (lockstep step and reset_time), to publish /clock and the state at once.
   ControlServices(ros::NodeHandle& nh, const NodeConfig& config, rigid_body::World& world, WrenchInput& wrench_input,
                   std::function<rigid_body::Nanoseconds()> now, std::function<void()> clock_moved);
+
+  /// A body the config now has at `body`: its services; the bodies from `body` on move up one index.
+  void addBody(std::size_t body);
+  /// The body at `body` is gone: its services shut down, the later bodies move down one index.
+  void removeBody(std::size_t body);
 
   bool onReset(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
   bool onResetTime(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
@@ -47,11 +53,13 @@ class ControlServices {
 
  private:
   const NodeConfig& config_;
+  ros::NodeHandle nh_;
   rigid_body::World& world_;
   WrenchInput& wrench_input_;
   std::function<rigid_body::Nanoseconds()> now_;
   std::function<void()> clock_moved_;
-  std::vector<ros::ServiceServer> services_;
+  std::vector<ros::ServiceServer> services_;                     ///< the scene's
+  BodyList<std::vector<ros::ServiceServer>> body_services_;       ///< per body
 };
 
 }  // namespace rigid_body_ros

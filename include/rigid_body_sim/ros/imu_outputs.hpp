@@ -26,13 +26,17 @@ class ImuOutputs {
   void publish(const rigid_body::World& world);
   /// The fixed transforms body_frame → sensor frame, for the node's one static broadcast.
   std::vector<geometry_msgs::TransformStamped> sensorFrames(const ros::Time& stamp) const;
+  /// A body the config now has at `body`: its sensor, if it has one; the bodies from `body` on move up one.
+  void addBody(std::size_t body);
+  /// The body at `body` is gone: its sensor's publisher shuts down, the later bodies move down one index.
+  void removeBody(std::size_t body);
   /// Readings withheld because a value was not finite.
   std::uint64_t withheld() const { return withheld_; }
 
  private:
   struct Sensor {
     std::size_t body;
-    const ImuConfig* config;
+    ImuConfig config;  ///< a copy: the config's body list moves when bodies are spawned
     ros::Publisher publisher;
     OutputSchedule schedule;
     rigid_body::SensorNoiseModel gyro_noise;
@@ -43,6 +47,7 @@ class ImuOutputs {
   void publishSensor(const rigid_body::World& world, Sensor& sensor);
 
   const NodeConfig& config_;
+  ros::NodeHandle nh_;
   std::vector<std::unique_ptr<Sensor>> sensors_;
   std::uint64_t withheld_ = 0;
 };

@@ -48,7 +48,14 @@ class Outputs {
   void setNoise(const NoiseConfig& noise);
 
   /// Largest ||q| − 1| published for a body since the last reset.
-  double maxNormError(std::size_t body) const { return channels_[body].max_norm_error; }
+  double maxNormError(std::size_t body) const { return channels_[body]->max_norm_error; }
+
+  /// A body the config now has at `body` (spawned: the last), with its topics, tf and a place in the arrays;
+  /// the bodies from `body` on move up one index.
+  void addBody(std::size_t body);
+  /// The body at `body` is gone: its publishers shut down, the later bodies move down one index. Call before
+  /// the config drops it.
+  void removeBody(std::size_t body);
 
  private:
   struct Channel {
@@ -69,7 +76,7 @@ class Outputs {
   };
   void publishContacts(const rigid_body::World& world, std::size_t body, const ros::Time& stamp);
 
-  void advertise(ros::NodeHandle& nh, std::size_t body, uint32_t queue);
+  void advertise(Channel& channel, const BodyConfig& config, std::size_t body);
   /// bodies/odom: every body's odometry in one message (publish/per_body_topics: false).
   void publishArray(const rigid_body::World& world, const ros::Time& stamp);
   /// bodies/states: every body's pose and world-axes twist in one message (every scene, with publish/state).
@@ -83,7 +90,9 @@ class Outputs {
   void publishBody(const rigid_body::World& world, std::size_t body, const ros::Time& stamp, const Due& due);
 
   const NodeConfig& config_;
-  std::vector<Channel> channels_;  ///< sized once: the subscriber-count callbacks hold indices into it
+  ros::NodeHandle nh_;
+  uint32_t queue_;
+  std::vector<std::unique_ptr<Channel>> channels_;  ///< on the heap: the subscriber-count callbacks hold pointers
   OwnTransforms& own_transforms_;
   std::unique_ptr<tf2_ros::StaticTransformBroadcaster> mesh_frame_broadcaster_;
   std::vector<geometry_msgs::TransformStamped> transforms_;  ///< one per body when tf is published

@@ -181,6 +181,12 @@ using ParameterReader = std::function<bool(const std::string& name, std::string&
 /// know (e.g. "mas", "initial/postion") go to unknown_parameters. `reader` resolves ~robot_description.
 NodeConfig parseConfig(const XmlRpc::XmlRpcValue& params, const ParameterReader& reader = ParameterReader());
 
+/// One item of ~bodies on its own (a body spawned at run time) for the scene-wide values of `scene` (its
+/// gravity and world frame): as parseConfig reads an item, errors named "parameter ~bodies[0]/KEY = ...".
+/// Unknown keys go to `unknown` as "bodies[0]/KEY".
+BodyConfig parseBodyItem(const XmlRpc::XmlRpcValue& item, const NodeConfig& scene, std::vector<std::string>& unknown,
+                         const ParameterReader& reader);
+
 /// Whether the node reads `key` (a/b for nested keys: publish/tf, initial/position, contact/iterations):
 /// the scene's and a body's keys, the groups, and the keys within publish, noise, initial and contact.
 bool isKnownParameter(const std::string& key);

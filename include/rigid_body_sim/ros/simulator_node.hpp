@@ -7,8 +7,11 @@
 
 #include <ros/ros.h>
 
+#include <cstdint>
 #include <functional>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "rigid_body_sim/ros/control_services.hpp"
 #include "rigid_body_sim/ros/imu_outputs.hpp"
@@ -46,6 +49,13 @@ class SimulatorNode {
   void update(const ros::Time& now);
 
   const rigid_body::World& world() const { return world_; }
+
+  /// Scene edits (simulator_edits.cpp), also the spawn, remove and list_bodies services: at once, between
+  /// two steps (the node's callbacks never run during one). A body spawned from `yaml`, the keys of one
+  /// ~bodies item, or the body called `name` removed; false with the reason in `message` when refused, the
+  /// scene unchanged.
+  bool spawn(const std::string& yaml, std::string& message);
+  bool remove(const std::string& name, std::string& message);
   bool lockstep() const { return config_.lockstep; }
 
  private:
@@ -58,6 +68,14 @@ class SimulatorNode {
   /// Logs what an update did that a user should hear about (drops, divergence, timeouts, jumps).
   void report(const rigid_body::UpdateResult& result);
   void publish();
+  /// Logs a body's properties and its step, once (at start-up, at its spawn).
+  void logBody(std::size_t body) const;
+  void advertiseEditServices();
+  /// Every component takes the body the config has at `body`, or lets it go.
+  void addToComponents(std::size_t body);
+  void removeFromComponents(std::size_t body);
+  /// Counts a refused spawn or remove and warns (throttled: a client retrying in a loop does not flood the log).
+  void refuseEdit(const std::string& message);
 
   NodeConfig config_;
   ros::NodeHandle nh_;
@@ -71,6 +89,8 @@ class SimulatorNode {
   NodeDiagnostics diagnostics_;
   ControlServices services_;
   LiveParameters live_;
+  std::vector<ros::ServiceServer> edit_services_;  ///< spawn, remove, list_bodies
+  std::uint64_t refused_edits_ = 0;
   ros::Timer timer_;
 };
 

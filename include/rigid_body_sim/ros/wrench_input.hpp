@@ -17,12 +17,14 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
 #include "rigid_body_sim/BodyWrenches.h"
+#include "rigid_body_sim/ros/body_list.hpp"
 #include "rigid_body_sim/ros/foreign_transforms.hpp"
 #include "rigid_body_sim/ros/parameters.hpp"
 #include "rigid_body_sim/world.hpp"
@@ -72,6 +74,11 @@ class WrenchInput {
   std::uint64_t messages(std::size_t body) const { return messages_[body]; }
   std::uint64_t refusedMessages(std::size_t body) const { return refused_messages_[body]; }
 
+  /// A body the config now has at `body`: its wrench topics; the bodies from `body` on move up one index.
+  void addBody(std::size_t body);
+  /// The body at `body` is gone: its subscribers shut down, the later bodies move down one index.
+  void removeBody(std::size_t body);
+
  private:
   void onWrench(std::size_t body, const geometry_msgs::WrenchStamped& message);
   void onWrenchUnstamped(std::size_t body, const geometry_msgs::Wrench& message);
@@ -99,7 +106,12 @@ class WrenchInput {
   tf2::BufferCore tf_buffer_;
   ForeignTransforms foreign_transforms_;  ///< fills tf_buffer_
   std::unordered_map<std::string, std::size_t> body_by_frame_;  ///< this node's published frames
-  std::vector<ros::Subscriber> subscribers_;
+  ros::NodeHandle nh_;
+  struct WrenchTopics {
+    ros::Subscriber stamped, unstamped;
+  };
+  BodyList<WrenchTopics> topics_;  ///< per body with wrench input and per-body topics
+  ros::Subscriber scene_subscriber_;  ///< bodies/wrench, without per-body topics
   std::map<std::string, ros::WallTime> last_frame_warning_;  ///< per unknown frame (bounded)
   std::unordered_map<std::string, std::size_t> body_by_name_;  ///< for bodies/wrench
   std::vector<std::uint64_t> messages_;          ///< per body: wrench messages delivered

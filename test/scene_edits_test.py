@@ -1,0 +1,126 @@
+#!/usr/bin/env python3
+"""spawn, remove and list_bodies on the paused lockstep node of test/edits_scene.yaml (a box on a floor, a
+free body in free fall). Each test spawns bodies of its own names, so the order they run in does not matter.
+A body that got another's index after an edit (its topic, its service, its contact) would move by the wrong
+closed form; a refused edit must leave the list as it was."""
+import unittest
+
+import rosgraph
+import rospy
+import rostest
+import tf2_ros
+
+from rigid_body_sim.msg import BodyStates
+from rigid_body_sim.testing import Simulator, SimulatorError, assert_pose_near
+
+DT, G = 0.001, 9.81
+DRIFTER_START, DRIFTER_VELOCITY = (5.0, 0.0, 100.0), (1.0, 0.0, 5.0)
+
+
+def box(name, position, collision=True, mass=1.0):
+    return {"name": name, "shape": "box", "size": [0.2, 0.2, 0.2], "mass": mass, "collision": collision,
+            "initial": {"position": list(position)}}
+
+
+class SceneEdits(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.sim = Simulator(body="drifter", timeout=20.0)  # a scene of several: a body's services by name
+        cls.sim.wait_for_node()
+        cls.tf = tf2_ros.Buffer()
+        cls.tf_listener = tf2_ros.TransformListener(cls.tf)
+        cls.drifter_steps_at_start = 0  # the drifter's step count when it was last at its initial state
+
+    def spawn(self, body):
+        """Spawns `body`, removed again when the test ends however it ends."""
+        self.sim.spawn(body)
+        self.addCleanup(lambda: body["name"] in self.names() and self.sim.remove(body["name"]))
+
+    def names(self):
+        return list(self.sim.list_bodies().names)
+
+    def assert_drifter_on_its_parabola(self):
+        # rk4 is exact for a quadratic: p = p0 + v0 t + g t²/2 to rounding, whatever happened elsewhere.
+        state = self.sim.state(body="drifter")
+        t = (state.total_steps - self.drifter_steps_at_start) * DT
+        expected = [p + v * t for p, v in zip(DRIFTER_START, DRIFTER_VELOCITY)]
+        expected[2] -= 0.5 * G * t * t
+        assert_pose_near(state, expected, position_tolerance=1e-9)
+
+    def test_a_spawned_box_gets_its_topics_and_lands_on_the_box_below(self):
+        self.spawn(box("lander", (0.0, 0.0, 0.6)))
+        listed = self.sim.list_bodies()
+        index = list(listed.names).index("lander")
+        self.assertTrue(listed.colliding[index])
+        self.assertEqual(listed.shapes[index], "box")
+        self.assertAlmostEqual(self.sim.properties(body="lander").mass, 1.0)
+        # Its odometry is there at once; 1.5 s after a 0.3 m drop it rests on the base (top face at 0.2 m, its
+        # centre 0.1 m above), not in it nor through it on the floor.
+        first = self.sim.step_and_collect(10, every=10, body="lander")[0]
+        self.assertEqual(first.child_frame_id, "lander")
+        # Its tf frame too, at the odometry's stamp and pose.
+        transform = self.tf.lookup_transform("world", "lander", first.header.stamp, rospy.Duration(5.0))
+        self.assertAlmostEqual(transform.transform.translation.z, first.pose.pose.position.z, places=12)
+        self.sim.step(1500)
+        assert_pose_near(self.sim.state(body="lander"), (0.0, 0.0, 0.3), position_tolerance=2e-3)
+        assert_pose_near(self.sim.state(body="base"), (0.0, 0.0, 0.1), position_tolerance=2e-3)
+        self.assert_drifter_on_its_parabola()
+
+    def test_after_a_removal_each_topic_and_service_reaches_its_own_body(self):
+        # Three free bodies far from everything; the middle one goes, the last one moves down an index.
+        for i, name in enumerate(("first", "middle", "last")):
+            self.spawn(box(name, (20.0 + 2 * i, 0.0, 50.0), collision=False, mass=1.0 + i))
+        self.sim.step(10)
+        self.sim.remove("middle")
+        self.assertNotIn("middle", self.names())
+        master = rosgraph.Master("/scene_edits_test")
+        topics = [name for name, _ in master.getPublishedTopics("/")]
+        self.assertNotIn("/middle/odom", topics)
+        self.assertIn("/last/odom", topics)
+        # 3 N on the 3 kg "last" along +y for its topic wrench: +1 m/s² there, nothing on "first".
+        self.sim.push_wrench((0.0, 3.0, 0.0), body="last")
+        before = {name: self.sim.state(body=name) for name in ("first", "last")}
+        self.sim.step(500)
+        for name, gain in (("first", 0.0), ("last", 0.5)):
+            after = self.sim.state(body=name)
+            self.assertAlmostEqual(after.twist_world.linear.y - before[name].twist_world.linear.y, gain, places=9,
+                                   msg=name)
+            self.assertAlmostEqual(after.pose.position.x, before[name].pose.position.x, places=12, msg=name)
+        states = self.sim.step_and_collect(10, every=10, topic="/bodies/states", message_class=BodyStates)[0]
+        self.assertEqual(list(states.name)[-2:], ["first", "last"])
+        self.assert_drifter_on_its_parabola()
+
+    def test_refused_edits_say_why_and_change_nothing(self):
+        before = self.names()
+        cases = [
+            (box("inside", (0.05, 0.0, 0.15)), "base"),          # overlaps the base box
+            (box("sunk", (3.0, 0.0, 0.05)), "floor"),            # half in the floor
+            (box("base", (9.0, 0.0, 5.0)), "name"),              # a name taken
+            ({"name": "typo", "mas": 1.0}, "mas"),               # not a key
+            ({"name": "heavy", "mass": -1.0}, "mass"),           # a value out of range
+            ("{name: [", "YAML"),                                 # not YAML
+        ]
+        for body, reason in cases:
+            with self.assertRaises(SimulatorError) as refused:
+                self.sim.spawn(body)
+            self.assertIn(reason, str(refused.exception))
+        with self.assertRaises(SimulatorError) as unknown:
+            self.sim.remove("nobody")
+        self.assertIn("nobody", str(unknown.exception))
+        self.assertEqual(self.names(), before)
+        self.sim.step(10)
+        self.assert_drifter_on_its_parabola()
+
+    def test_a_reset_keeps_a_spawned_body_and_takes_it_back_to_its_spawn_state(self):
+        self.spawn(box("keeper", (-5.0, 0.0, 30.0), collision=False))
+        self.sim.step(300)
+        self.assertLess(self.sim.state(body="keeper").pose.position.z, 30.0 - 0.4)
+        self.sim.reset()
+        SceneEdits.drifter_steps_at_start = self.sim.state(body="drifter").total_steps
+        assert_pose_near(self.sim.state(body="keeper"), (-5.0, 0.0, 30.0), position_tolerance=1e-12)
+        self.assertIn("keeper", self.names())
+
+
+if __name__ == "__main__":
+    rospy.init_node("scene_edits_test")
+    rostest.rosrun("rigid_body_sim", "scene_edits", SceneEdits)
