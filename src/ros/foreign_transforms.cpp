@@ -4,11 +4,16 @@
 
 #include <string>
 
+#include "rigid_body_sim/ros/time_conversion.hpp"
+
 namespace rigid_body_ros {
 
 namespace {
 // Subscriber queues, as tf2_ros's listener has them.
 constexpr uint32_t kQueueSize = 100;
+// tf2's cache adds its storage time (10 s) to a transform's stamp, which ros::Time refuses, by throwing,
+// past 2^32 s: a stamp this close to the end of ROS time is refused here instead [ns].
+constexpr rigid_body::Nanoseconds kStampMargin = 3600LL * 1000000000LL;
 }  // namespace
 
 ForeignTransforms::ForeignTransforms(tf2::BufferCore& buffer, const OwnTransforms& own) : buffer_(buffer), own_(own) {
@@ -42,9 +47,14 @@ void ForeignTransforms::onTransforms(const ros::MessageEvent<tf2_msgs::TFMessage
   last_update_ = now;
   const std::string& authority = event.getPublisherName();
   for (const geometry_msgs::TransformStamped& transform : event.getConstMessage()->transforms) {
+    if (toNanoseconds(transform.header.stamp) > kEndOfRosTime - kStampMargin) {
+      ROS_WARN_THROTTLE(2.0, "rigid_body_node: a transform from %s refused: its stamp %.3f s is within an hour of "
+                        "the end of ROS time (2^32 s)", authority.c_str(), transform.header.stamp.toSec());
+      continue;
+    }
     try {
       buffer_.setTransform(transform, authority, is_static);
-    } catch (const tf2::TransformException& exception) {
+    } catch (const std::exception& exception) {  // tf2's refusals, and ros::Time's arithmetic should it throw
       ROS_WARN_THROTTLE(2.0, "rigid_body_node: a transform from %s refused by tf2: %s", authority.c_str(),
                         exception.what());
     }

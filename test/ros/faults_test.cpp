@@ -2,6 +2,7 @@
 // blow-up scene. Each case asserts what reaches odometry and what /diagnostics says.
 #include <gtest/gtest.h>
 #include <std_srvs/Empty.h>
+#include <tf2_msgs/TFMessage.h>
 
 #include "test_helpers.hpp"
 
@@ -135,6 +136,29 @@ TEST(Faults, AStreamOfUnknownFramesIsRejectedAtOnceAndTheRateHolds) {
   // "/world" is the world frame: accepted.
   publisher.publish(wrench("/world", 1.0, 0.0, 0.0));
   EXPECT_TRUE(waitUntil([&] { return worldVelocity(odom.messages.back()).x() > 0.0; }));
+}
+
+TEST(Faults, TransformsStampedAtTheEndOfRosTimeAreRefusedAndEveryNodeGoesOn) {
+  // tf2's cache adds its storage time to a stamp, and ros::Time throws past 2^32 s: a foreign /tf stamped
+  // there must be refused, not end the node (every node of this suite listens to /tf; all are required).
+  ros::NodeHandle nh;
+  Recorder<nav_msgs::Odometry> odom(nh, "stamps/odom");
+  ros::Publisher tf = nh.advertise<tf2_msgs::TFMessage>("/tf", 10);
+  ASSERT_TRUE(waitUntil([&] { return tf.getNumSubscribers() >= 5; }));
+  ASSERT_TRUE(odom.waitForCount(5));
+  for (const std::uint32_t seconds : {4294967295u, 4294967290u, 4294967000u}) {
+    tf2_msgs::TFMessage message;
+    geometry_msgs::TransformStamped transform;
+    transform.header.frame_id = "late_parent";
+    transform.child_frame_id = "late_child";
+    transform.header.stamp = ros::Time(seconds, 999999999u);
+    transform.transform.rotation.w = 1.0;
+    message.transforms = {transform, transform};
+    tf.publish(message);
+  }
+  const std::size_t before = odom.messages.size();
+  spinFor(1.0);
+  EXPECT_TRUE(odom.waitForCount(before + 20));
 }
 
 TEST(Faults, DiagnosticsReportTheNodesState) {
