@@ -20,7 +20,8 @@ import rospy
 from geometry_msgs.msg import TransformStamped, Wrench, WrenchStamped
 from nav_msgs.msg import Odometry
 from rigid_body_sim.msg import RigidBodyState
-from rigid_body_sim.srv import ApplyWrench, ApplyWrenchRequest, GetState, SetState, SetStateRequest, Step
+from rigid_body_sim.srv import (ApplyWrench, ApplyWrenchRequest, GetState, ListBodies, Remove, SetState,
+                                SetStateRequest, Spawn, Step)
 from std_srvs.srv import Empty, Trigger
 from tf2_msgs.msg import TFMessage
 
@@ -132,6 +133,27 @@ def random_transforms(rng):
     return m
 
 
+# Names a spawn and a remove draw from: a few real ones (so that removals hit spawned bodies), the flat
+# body's frame (refused: it is the only body, or the fuzzer's target stays), and odd strings.
+SPAWN_NAMES = ["s1", "s2", "s3", "s4", "world", "base_link", "", "1abc", "a b", "x" * 300, "ü"]
+SPAWN_SHAPES = ["box", "sphere", "cylinder", "mesh", "capsule", "plane", "nothing"]
+
+
+def random_spawn(rng):
+    """YAML text of a body, valid or not: odd names, shapes, sizes, masses, positions, broken syntax."""
+    def value():
+        x = number(rng)
+        return repr(x) if math.isfinite(x) else rng.choice([".nan", ".inf", "-.inf", "nan"])
+    name = rng.choice(SPAWN_NAMES)
+    parts = ["name: '%s'" % name, "shape: %s" % rng.choice(SPAWN_SHAPES), "mass: %s" % value(),
+             "size: [%s]" % ", ".join(value() for _ in range(rng.randint(0, 4))),
+             "initial: {position: [%s, %s, %s]}" % (value(), value(), value())]
+    if rng.random() < 0.5:
+        parts.append("collision: %s" % rng.choice(["true", "false", "{shape: capsule, size: [0.1, 0.2]}", "3"]))
+    text = "{" + ", ".join(rng.sample(parts, rng.randint(1, len(parts)))) + "}"
+    return text[:rng.randint(0, len(text))] if rng.random() < 0.1 else text
+
+
 def random_stamp(rng):
     choice = rng.randint(0, 4)
     if choice == 0:
@@ -154,7 +176,8 @@ def main():
     unstamped = rospy.Publisher(ns + "/wrench_unstamped", Wrench, queue_size=100)
     transforms = rospy.Publisher("/tf", TFMessage, queue_size=100)
     types = {"apply_wrench": ApplyWrench, "set_state": SetState, "get_state": GetState, "step": Step,
-             "pause": Empty, "unpause": Empty, "reset": Empty, "reset_time": Trigger, "clear_wrenches": Empty}
+             "pause": Empty, "unpause": Empty, "reset": Empty, "reset_time": Trigger, "clear_wrenches": Empty,
+             "spawn": Spawn, "remove": Remove, "list_bodies": ListBodies}
     services = {name: rospy.ServiceProxy(ns + "/" + name, kind) for name, kind in types.items()}
     rospy.wait_for_service(ns + "/get_state", timeout=30)
     time.sleep(1.0)
@@ -194,6 +217,10 @@ def main():
                 o.x, o.y, o.z, o.w = rng.choice([(0, 0, 0, 1), (number(rng), 0, 0, 1), (0, 0, 0, 0)])
                 request.twist.linear.x, request.twist.angular.z = number(rng), number(rng)
                 request.twist_frame = rng.choice(["", "body", "world", "map"])
+            elif name == "spawn":
+                request = random_spawn(rng)
+            elif name == "remove":
+                request = rng.choice([n for n in SPAWN_NAMES if n != "base_link"])
             elif name == "step":
                 request = rng.choice([-(2 ** 63), -1, 0, 1, 10, 1000, 10 ** 6, 10 ** 9, 2 ** 63 - 1])
             else:

@@ -114,7 +114,7 @@ def text_block(path):
 
 def main():
     p = argparse.ArgumentParser()
-    for key in ("steps", "scene", "contact", "anatomy", "node", "lockstep"):
+    for key in ("steps", "scene", "contact", "anatomy", "node", "lockstep", "nodelet", "spawn"):
         p.add_argument("--" + key)
     p.add_argument("--date", required=True)
     p.add_argument("--commit", required=True)
@@ -175,6 +175,21 @@ def main():
                  ""] + lockstep
     else:
         page += ["Not measured in this run (`scripts/performance_report.sh --no-node`)."]
+    nodelet, spawn = text_block(a.nodelet), text_block(a.spawn)
+    if nodelet:
+        page += ["", "The simulator as a nodelet ([nodelet.md](nodelet.md)) with an in-process subscriber that reads "
+                 "every odometry message of the first body (nothing dropped: the count is checked against the "
+                 "stamps), tf and `/clock` published as usual: `scripts/lockstep_nodelet_speed.sh` (same scenes and "
+                 "rates). What bounds it: [performance_log.md](performance_log.md#lockstep-as-a-nodelet).", ""] + nodelet
+    if spawn:
+        page += ["", "## Spawning", "",
+                 "`scripts/spawn_speed.sh 2000` (a real roscore; a paused lockstep node; 2 000 free bodies spawned "
+                 "one service call at a time over a persistent connection; the mean wall time per call for each "
+                 "quarter). With per-body topics each spawn registers ten topics and services, and roscpp searches "
+                 "its own registrations linearly for each (perf: `ServiceManager::isServiceAdvertised`, "
+                 "`TopicManager::addSubCallback` and `advertise` lead the profile), so the cost grows with the "
+                 "bodies already there; without them it stays flat (the paused lockstep driver looks at its "
+                 "callbacks every millisecond, which is most of it):", ""] + spawn
     with open(a.out, "w") as f:
         f.write("\n".join(page) + "\n")
 

@@ -2,7 +2,7 @@
 # Writes docs/performance.md from one run: builds the package (Release), runs the benchmarks and, unless
 # --no-node, the node's load and lockstep measurements on a real roscore, and renders their figures with the
 # date, the commit and the machine (scripts/performance_report.py). Not a test: it asserts nothing.
-# Takes ~10 minutes on the project's 2-core VM (~4 without the node). Extra arguments after --no-node are
+# Takes ~15 minutes on the project's 2-core VM (~4 without the node). Extra arguments after --no-node are
 # none; SECONDS_PER_RUN is passed to the node scripts.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
@@ -26,7 +26,10 @@ node_args=()
 if [[ $with_node == 1 ]]; then
   "$PACKAGE_DIR/scripts/node_load.sh" 1 1000 >"$results/node.txt"
   "$PACKAGE_DIR/scripts/lockstep_speed.sh" 1 1000 >"$results/lockstep.txt"
-  node_args=(--node "$results/node.txt" --lockstep "$results/lockstep.txt")
+  "$PACKAGE_DIR/scripts/lockstep_nodelet_speed.sh" 1 1000 >"$results/nodelet.txt"
+  "$PACKAGE_DIR/scripts/spawn_speed.sh" 2000 >"$results/spawn.txt"
+  node_args=(--node "$results/node.txt" --lockstep "$results/lockstep.txt" --nodelet "$results/nodelet.txt"
+             --spawn "$results/spawn.txt")
 fi
 commit=$(git -C "$PACKAGE_DIR" rev-parse --short HEAD)
 # The page itself does not count: a run rewrites it before it is committed.

@@ -5,10 +5,14 @@ A body that got another's index after an edit (its topic, its service, its conta
 closed form; a refused edit must leave the list as it was."""
 import unittest
 
+import time
+
 import rosgraph
 import rospy
 import rostest
 import tf2_ros
+
+from visualization_msgs.msg import Marker, MarkerArray
 
 from rigid_body_sim.msg import BodyStates
 from rigid_body_sim.testing import Simulator, SimulatorError, assert_pose_near
@@ -29,12 +33,26 @@ class SceneEdits(unittest.TestCase):
         cls.sim.wait_for_node()
         cls.tf = tf2_ros.Buffer()
         cls.tf_listener = tf2_ros.TransformListener(cls.tf)
+        cls.markers = []
+        cls.marker_subscriber = rospy.Subscriber("/markers", MarkerArray, cls.markers.append, queue_size=100)
         cls.drifter_steps_at_start = 0  # the drifter's step count when it was last at its initial state
 
     def spawn(self, body):
         """Spawns `body`, removed again when the test ends however it ends."""
         self.sim.spawn(body)
         self.addCleanup(lambda: body["name"] in self.names() and self.sim.remove(body["name"]))
+
+    def wait_for_markers(self, wanted):
+        """The first marker message from now on that has a marker for which wanted(marker) holds (the node
+        publishes markers with a step request's outputs while someone listens, at marker_rate)."""
+        del self.markers[:]
+        deadline = time.monotonic() + 10.0
+        while time.monotonic() < deadline:
+            self.sim.step(100)  # 0.1 s: at least one marker period of 1/20 s
+            for message in list(self.markers):
+                if any(wanted(marker) for marker in message.markers):
+                    return message
+        self.fail("no marker message with the wanted marker")
 
     def names(self):
         return list(self.sim.list_bodies().names)
@@ -65,14 +83,25 @@ class SceneEdits(unittest.TestCase):
         assert_pose_near(self.sim.state(body="lander"), (0.0, 0.0, 0.3), position_tolerance=2e-3)
         assert_pose_near(self.sim.state(body="base"), (0.0, 0.0, 0.1), position_tolerance=2e-3)
         self.assert_drifter_on_its_parabola()
+        # Its marker: its box in its own frame.
+        self.wait_for_markers(lambda m: m.ns == "bodies" and m.header.frame_id == "lander" and
+                              m.type == Marker.CUBE and abs(m.scale.z - 0.2) < 1e-12)
 
     def test_after_a_removal_each_topic_and_service_reaches_its_own_body(self):
         # Three free bodies far from everything; the middle one goes, the last one moves down an index.
         for i, name in enumerate(("first", "middle", "last")):
             self.spawn(box(name, (20.0 + 2 * i, 0.0, 50.0), collision=False, mass=1.0 + i))
         self.sim.step(10)
+        last_id = len(self.names()) - 1
         self.sim.remove("middle")
         self.assertNotIn("middle", self.names())
+        # The freed marker id (the old last index) is deleted; "last" is drawn under the id before it.
+        message = self.wait_for_markers(lambda m: m.ns == "bodies" and m.action == Marker.DELETE)
+        deleted = [m.id for m in message.markers if m.ns == "bodies" and m.action == Marker.DELETE]
+        self.assertEqual(deleted, [last_id])
+        drawn = {m.header.frame_id: m.id for m in message.markers if m.ns == "bodies" and m.action == Marker.ADD}
+        self.assertEqual(drawn["last"], last_id - 1)
+        self.assertNotIn("middle", drawn)
         master = rosgraph.Master("/scene_edits_test")
         topics = [name for name, _ in master.getPublishedTopics("/")]
         self.assertNotIn("/middle/odom", topics)
@@ -89,6 +118,16 @@ class SceneEdits(unittest.TestCase):
         states = self.sim.step_and_collect(10, every=10, topic="/bodies/states", message_class=BodyStates)[0]
         self.assertEqual(list(states.name)[-2:], ["first", "last"])
         self.assert_drifter_on_its_parabola()
+
+    def test_a_body_spawned_into_a_freed_marker_id_is_drawn_not_deleted(self):
+        # Removed and spawned again before any marker message: the id is the new body's, so no DELETE of it.
+        self.spawn(box("flash", (-8.0, 0.0, 40.0), collision=False))
+        freed = len(self.names()) - 1
+        self.sim.remove("flash")
+        self.spawn(box("again", (-8.0, 3.0, 40.0), collision=False))
+        message = self.wait_for_markers(lambda m: m.header.frame_id == "again")
+        ids = [(m.id, m.action) for m in message.markers if m.ns == "bodies" and m.id == freed]
+        self.assertEqual(ids, [(freed, Marker.ADD)])
 
     def test_refused_edits_say_why_and_change_nothing(self):
         before = self.names()

@@ -81,6 +81,10 @@ Markers::Markers(ros::NodeHandle& nh, const NodeConfig& config) : config_(config
 }
 
 void Markers::bodiesChanged(std::size_t bodies_before) {
+  // An id a spawn takes again is drawn, not deleted, by the next publication.
+  const int bodies = static_cast<int>(config_.bodies.size());
+  removed_ids_.erase(std::remove_if(removed_ids_.begin(), removed_ids_.end(), [bodies](int id) { return id < bodies; }),
+                     removed_ids_.end());
   if (config_.bodies.size() == bodies_before + 1) {
     // A spawn appends: its marker goes after the other bodies' (a spawn costs the same in any scene).
     array_.markers.insert(array_.markers.begin() + static_cast<std::ptrdiff_t>(bodies_before),

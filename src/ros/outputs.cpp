@@ -159,7 +159,8 @@ void Outputs::publishStaticFrames(const ros::Time& stamp, std::vector<geometry_m
     X_BM.child_frame_id = config.mesh_frame;
     mesh_frames.push_back(X_BM);
   }
-  if (mesh_frames.empty()) return;
+  // None: nothing to latch, unless a removal took the last one away (a late listener then gets none).
+  if (mesh_frames.empty() && !mesh_frame_broadcaster_) return;
   mesh_frame_broadcaster_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
   mesh_frame_broadcaster_->sendTransform(mesh_frames);
 }
