@@ -114,7 +114,7 @@ def text_block(path):
 
 def main():
     p = argparse.ArgumentParser()
-    for key in ("steps", "scene", "contact", "anatomy", "node", "lockstep", "nodelet", "spawn"):
+    for key in ("steps", "scene", "contact", "anatomy", "bullet", "node", "lockstep", "nodelet", "spawn"):
         p.add_argument("--" + key)
     p.add_argument("--date", required=True)
     p.add_argument("--commit", required=True)
@@ -155,6 +155,14 @@ def main():
              "10, and spheres apart in zero g (the broad phase alone). The accuracy report's piles and "
              "SimBenchmark's scenes, with their accuracy: [REPORT.md](../report/REPORT.md).", ""]
     page += contact(medians(a.contact))
+    bullet = text_block(a.bullet)
+    if bullet:
+        page += ["", "Beside Bullet: `bullet_side_by_side` runs the same scenes in the package and in Bullet's own "
+                 "`btDiscreteDynamicsWorld` (sequential impulses, the same h, sweeps, friction and restitution, "
+                 "deactivation off in both), back to back on one thread. Sag: how far a body sank or moved while "
+                 "the scene settled (0.5 s, untimed); creep: how far one moved over the timed 3 s after it; deepest: "
+                 "the deepest penetration seen after a step (the pile's during its drop, timed over its first 2 s).",
+                 ""] + [line for line in bullet if line != "```"]
     page += ["", "## Where a lone step's time goes", "",
              "`step_anatomy`: this core's latency of one dependent double operation, and the lane kernel alone "
              "on the general body (no load or store of a `State`, no acceptance test): what `Integrator::step` "
