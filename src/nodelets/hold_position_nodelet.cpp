@@ -16,6 +16,7 @@
 #include <boost/make_shared.hpp>
 #include <cmath>
 #include <stdexcept>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -26,11 +27,17 @@ class HoldPositionNodelet : public nodelet::Nodelet {
   void onInit() override {
     ros::NodeHandle& nh = getNodeHandle();
     ros::NodeHandle& private_nh = getPrivateNodeHandle();
-    target_ = vector(private_nh, "target", Eigen::Vector3d(0.0, 0.0, 1.0));
-    gravity_ = vector(private_nh, "gravity", Eigen::Vector3d(0.0, 0.0, -9.81));
-    kp_ = positive(private_nh, "kp", 40.0);
-    kd_ = positive(private_nh, "kd", 10.0);
-    mass_ = positive(private_nh, "mass", 1.0);
+    try {
+      target_ = vector(private_nh, "target", Eigen::Vector3d(0.0, 0.0, 1.0));
+      gravity_ = vector(private_nh, "gravity", Eigen::Vector3d(0.0, 0.0, -9.81));
+      kp_ = positive(private_nh, "kp", 40.0);
+      kd_ = positive(private_nh, "kd", 10.0);
+      mass_ = positive(private_nh, "mass", 1.0);
+    } catch (const std::invalid_argument& error) {
+      // The manager reports only that the load failed: the reason goes to the log first.
+      NODELET_FATAL("%s", error.what());
+      throw;
+    }
     publisher_ = nh.advertise<geometry_msgs::WrenchStamped>("wrench", 10);
     subscriber_ = nh.subscribe("odom", 10, &HoldPositionNodelet::onOdometry, this);
   }
@@ -50,12 +57,22 @@ class HoldPositionNodelet : public nodelet::Nodelet {
     publisher_.publish(wrench);
   }
 
+  // A parameter's value as the parameter server holds it, for a message.
+  static std::string shown(ros::NodeHandle& nh, const std::string& name) {
+    XmlRpc::XmlRpcValue raw;
+    if (!nh.getParam(name, raw)) return "?";
+    std::ostringstream text;
+    text << raw;
+    return text.str();
+  }
+
   // A parameter that must be 3 finite numbers; a wrong one fails the load with a message naming it.
   static Eigen::Vector3d vector(ros::NodeHandle& nh, const std::string& name, const Eigen::Vector3d& fallback) {
     std::vector<double> value;
     if (!nh.hasParam(name)) return fallback;
     if (!nh.getParam(name, value) || value.size() != 3 || !std::isfinite(value[0] + value[1] + value[2])) {
-      throw std::invalid_argument("parameter " + nh.resolveName(name) + ": must be a list of 3 finite numbers");
+      throw std::invalid_argument("parameter " + nh.resolveName(name) + " = " + shown(nh, name) +
+                                  ": must be a list of 3 finite numbers");
     }
     return Eigen::Vector3d(value[0], value[1], value[2]);
   }
@@ -64,7 +81,8 @@ class HoldPositionNodelet : public nodelet::Nodelet {
     if (!nh.hasParam(name)) return fallback;
     double value = 0.0;
     if (!nh.getParam(name, value) || !(value > 0.0 && std::isfinite(value))) {
-      throw std::invalid_argument("parameter " + nh.resolveName(name) + ": must be a finite number > 0");
+      throw std::invalid_argument("parameter " + nh.resolveName(name) + " = " + shown(nh, name) +
+                                  ": must be a finite number > 0");
     }
     return value;
   }
