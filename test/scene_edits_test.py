@@ -12,6 +12,7 @@ import rospy
 import rostest
 import tf2_ros
 
+from sensor_msgs.msg import Imu
 from visualization_msgs.msg import Marker, MarkerArray
 
 from rigid_body_sim.msg import BodyStates
@@ -128,6 +129,21 @@ class SceneEdits(unittest.TestCase):
         message = self.wait_for_markers(lambda m: m.header.frame_id == "again")
         ids = [(m.id, m.action) for m in message.markers if m.ns == "bodies" and m.id == freed]
         self.assertEqual(ids, [(freed, Marker.ADD)])
+
+    def test_a_spawned_imu_reads_its_own_body_after_a_body_before_it_goes(self):
+        # A falling decoy first, then a box resting on the floor with an IMU; the decoy goes, so the sensor's
+        # body moves down an index. At rest the IMU reads the specific force +g up (REP 145); a sensor left
+        # on the old index would read the free fall of another body (0) or nothing.
+        self.spawn(box("decoy", (-3.0, -3.0, 60.0), collision=False))
+        sensed = box("sensed", (3.0, -3.0, 0.1))
+        sensed["imu"] = {"rate": 100.0}
+        self.spawn(sensed)
+        self.sim.step(300)
+        self.sim.remove("decoy")
+        reading = self.sim.step_and_collect(100, every=100, topic="imu", message_class=Imu, body="sensed")[0]
+        self.assertEqual(reading.header.frame_id, "sensed_imu")
+        self.assertAlmostEqual(reading.linear_acceleration.z, G, delta=0.01 * G)
+        self.assertAlmostEqual(reading.linear_acceleration.x, 0.0, delta=0.01 * G)
 
     def test_refused_edits_say_why_and_change_nothing(self):
         before = self.names()
