@@ -41,14 +41,15 @@ Scene::Scene(const std::vector<BodyDefinition>& bodies, IntegratorType integrato
     states_.push_back(body.initial);
     records_.push_back(BodyRecord{body.initial, body.takes_input});
   }
-  collider_of_.assign(bodies.size(), kNoCollider);
   contact_setup_ = contact;  // kept for edits of the body list (scene_edits.cpp)
-  if (!contact.active()) contact_setup_.bodies.assign(bodies.size(), std::nullopt);
   if (contact.active()) {
     if (contact.bodies.size() != bodies.size()) throw std::invalid_argument("contact: one entry per body is needed");
     adoptContactStep(contactStepFor(contact.bodies, states_));
     // The start-up check of every body against every other and the environment (contactStepFor leaves it out).
     contact_->start(states_);
+  } else {
+    contact_setup_.bodies.assign(bodies.size(), std::nullopt);
+    collider_of_.assign(bodies.size(), kNoCollider);
   }
   terms_.resize(bodies.size());
   for (std::size_t body = 0; body < bodies.size(); ++body) assemble(body);

@@ -21,11 +21,8 @@ std::unique_ptr<contact::ContactStep> Scene::contactStepFor(const std::vector<st
   validateContactSettings(contact_setup_.settings);
   for (const CollisionShape& shape : contact_setup_.environment) validateShape(shape, true);
   for (std::size_t body : colliders) validateShape(*shapes[body], false);
-  ContactSetup setup;
-  setup.environment = contact_setup_.environment;
-  setup.settings = contact_setup_.settings;
-  setup.bodies = shapes;
-  return std::make_unique<contact::ContactStep>(setup, colliders, integrator_type_, states);
+  return std::make_unique<contact::ContactStep>(contact_setup_.environment, contact_setup_.settings, shapes, colliders,
+                                                integrator_type_, states);
 }
 
 void Scene::adoptContactStep(std::unique_ptr<contact::ContactStep> step) {

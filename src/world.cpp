@@ -72,7 +72,6 @@ World::World(const std::vector<BodyDefinition>& bodies, IntegratorType integrato
   scene_.setMaxEnergyGrowth(settings.max_energy_growth);
   scene_.setThreads(settings.threads);
   inputs_.resize(bodies.size());
-  for (InputTimeline& timeline : inputs_) timeline.topic_expiry = kForever;
   pending_.reserve(std::min<std::size_t>(settings.max_pending_commands, 1024));
   paused_ = settings.start_paused;
 }

@@ -16,9 +16,7 @@ CommandReply World::addBody(const BodyDefinition& body, const std::optional<Coll
   } catch (const std::invalid_argument& error) {
     return {false, error.what()};
   }
-  InputTimeline timeline;
-  timeline.topic_expiry = kForever;
-  inputs_.push_back(timeline);
+  inputs_.emplace_back();
   if (index) *index = added;
   return {true, "body " + std::to_string(added) + " added at step " + std::to_string(clock_)};
 }

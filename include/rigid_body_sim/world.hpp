@@ -201,6 +201,8 @@ class World {
  private:
   Nanoseconds wallClock() const;  // settings_.wall_clock, or steady_clock
 
+  static constexpr std::int64_t kForever = std::numeric_limits<std::int64_t>::max();
+
   struct TimedWrench {
     AppliedWrench wrench;
     std::int64_t start;  // first step it acts on
@@ -209,7 +211,7 @@ class World {
   // A body's input sources (the Scene holds their sum for the current step).
   struct InputTimeline {
     AppliedWrench topic;
-    std::int64_t topic_expiry;  // step at which the topic wrench drops to zero; kForever: never
+    std::int64_t topic_expiry = kForever;  // step at which the topic wrench drops to zero; kForever: never
     bool timed_out = false;
     bool scheduled = false;  // listed in scheduled_ (a flag, so that listing a body costs O(1))
     std::vector<TimedWrench> timed;
@@ -229,7 +231,6 @@ class World {
     State state;
     ForceModel forces;
   };
-  static constexpr std::int64_t kForever = std::numeric_limits<std::int64_t>::max();
 
   static Command command(CommandKind kind, std::size_t body, Nanoseconds arrival);
   static Command wrenchCommand(CommandKind kind, std::size_t body, const AppliedWrench& wrench, Nanoseconds arrival,

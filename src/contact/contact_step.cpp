@@ -36,9 +36,11 @@ void rotate(Eigen::Quaterniond& q, const Eigen::Vector3d& rotation_W) {
 
 }  // namespace
 
-ContactStep::ContactStep(const ContactSetup& setup, const std::vector<std::size_t>& colliders,
-                         IntegratorType integrator, const std::vector<State>& states)
-    : colliders_(colliders), settings_(setup.settings), integrator_type_(integrator) {
+ContactStep::ContactStep(const std::vector<CollisionShape>& environment, const ContactSettings& settings,
+                         const std::vector<std::optional<CollisionShape>>& body_shapes,
+                         const std::vector<std::size_t>& colliders, IntegratorType integrator,
+                         const std::vector<State>& states)
+    : colliders_(colliders), settings_(settings), integrator_type_(integrator) {
   std::vector<CollisionShape> shapes;
   std::vector<Eigen::Isometry3d> poses;
   for (std::size_t body : colliders) {
@@ -48,20 +50,19 @@ ContactStep::ContactStep(const ContactSetup& setup, const std::vector<std::size_
       X_WB.translation() = states[body].p_WB;
     }
     poses.push_back(X_WB);
-    shapes.push_back(*setup.bodies[body]);
+    shapes.push_back(*body_shapes[body]);
     materials_.push_back(shapes.back().material);
     curved_.push_back(shapeInfo(shapes.back().type).curved);
     names_.push_back(shapes.back().name.empty() ? "body " + std::to_string(body) : shapes.back().name);
     inner_radius_.push_back(innerRadius(shapes.back()));
     outer_radius_.push_back(outerRadius(shapes.back()));
   }
-  for (std::size_t i = 0; i < setup.environment.size(); ++i) {
-    materials_.push_back(setup.environment[i].material);
-    curved_.push_back(shapeInfo(setup.environment[i].type).curved);
-    names_.push_back(setup.environment[i].name.empty() ? "environment shape " + std::to_string(i)
-                                                       : setup.environment[i].name);
+  for (std::size_t i = 0; i < environment.size(); ++i) {
+    materials_.push_back(environment[i].material);
+    curved_.push_back(shapeInfo(environment[i].type).curved);
+    names_.push_back(environment[i].name.empty() ? "environment shape " + std::to_string(i) : environment[i].name);
   }
-  world_ = std::make_unique<CollisionWorld>(setup.environment, shapes, poses);
+  world_ = std::make_unique<CollisionWorld>(environment, shapes, poses);
   const std::size_t n = colliders.size();
   start_.resize(n);
   engagement_.assign(n, 0);

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,10 +39,11 @@ class ContactStep {
   /// A colliding body not yet in the solver's list.
   static constexpr std::size_t kUnassigned = std::numeric_limits<std::size_t>::max();
 
-  /// `colliders[k]` is the scene index of the k-th colliding body; setup.bodies[that index] its shape;
+  /// `colliders[k]` is the scene index of the k-th colliding body; body_shapes[that index] its shape;
   /// `states` the scene's states (the bodies enter the broad phase where they are).
-  ContactStep(const ContactSetup& setup, const std::vector<std::size_t>& colliders, IntegratorType integrator,
-              const std::vector<State>& states);
+  ContactStep(const std::vector<CollisionShape>& environment, const ContactSettings& settings,
+              const std::vector<std::optional<CollisionShape>>& body_shapes, const std::vector<std::size_t>& colliders,
+              IntegratorType integrator, const std::vector<State>& states);
 
   /// Throws std::invalid_argument naming both sides when a body starts inside another or the environment
   /// deeper than the penetration slop; otherwise takes the initial touching pairs as resting.

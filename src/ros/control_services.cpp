@@ -40,7 +40,7 @@ void ControlServices::addBody(std::size_t body) {
   if (!config_.publish.body_services || !config_.publish.per_body_topics) return;
   const BodyConfig& body_config = config_.bodies[body];
   // The callbacks read the body's index where the list keeps it up to date.
-  auto& own = body_services_.insert(body);
+  auto& own = body_services_.append(body);
   std::vector<ros::ServiceServer>& servers = own.handles;
   servers.push_back(nh_.advertiseService<GetState::Request, GetState::Response>(
       body_config.topic("get_state"), [this, &own](auto& req, auto& res) { return onGetState(own.body, req, res); }));

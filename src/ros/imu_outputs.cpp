@@ -2,7 +2,6 @@
 
 #include <tf2_eigen/tf2_eigen.h>
 
-#include <algorithm>
 #include <cmath>
 
 #include "rigid_body_sim/imu.hpp"
@@ -31,20 +30,20 @@ ImuOutputs::ImuOutputs(ros::NodeHandle& nh, const NodeConfig& config) : config_(
 }
 
 void ImuOutputs::addBody(std::size_t body) {
-  for (const std::unique_ptr<Sensor>& sensor : sensors_) sensor->body += sensor->body >= body ? 1 : 0;
   const std::optional<ImuConfig>& imu = config_.bodies[body].imu;
   if (!imu) return;
   const uint32_t queue = config_.lockstep ? 100 : 10;
   const double period = 1.0 / imu->rate;
   const std::uint64_t seed = static_cast<std::uint64_t>(static_cast<std::int64_t>(imu->seed));
-  sensors_.push_back(std::unique_ptr<Sensor>(new Sensor{
-      body, *imu, nh_.advertise<sensor_msgs::Imu>(config_.bodies[body].topic("imu"), queue), OutputSchedule(),
+  std::unique_ptr<Sensor>& added = sensors_.append(body).handles;
+  added.reset(new Sensor{
+      *imu, nh_.advertise<sensor_msgs::Imu>(config_.bodies[body].topic("imu"), queue), OutputSchedule(),
       rigid_body::SensorNoiseModel(imu->gyro, period, seed + kGyroStream),
       rigid_body::SensorNoiseModel(imu->accel, period, seed + kAccelStream),
       // Orientation noise is white per sample: a density of σ √Δt gives the sample's σ.
       rigid_body::SensorNoiseModel({imu->orientation_stddev * std::sqrt(period), 0.0}, period, seed + kOrientationStream),
-      sensor_msgs::Imu()}));
-  Sensor& sensor = *sensors_.back();
+      sensor_msgs::Imu()});
+  Sensor& sensor = *added;
   sensor.message.header.frame_id = imu->frame;
   // The covariance of one sample's white part (the bias is not in it: it is a slowly changing offset).
   setDiagonal(sensor.message.angular_velocity_covariance, sensor.gyro_noise.whiteStddev());
@@ -52,21 +51,18 @@ void ImuOutputs::addBody(std::size_t body) {
   setDiagonal(sensor.message.orientation_covariance, imu->orientation_stddev);
 }
 
-void ImuOutputs::removeBody(std::size_t body) {
-  sensors_.erase(std::remove_if(sensors_.begin(), sensors_.end(), [body](const auto& s) { return s->body == body; }),
-                 sensors_.end());
-  for (const std::unique_ptr<Sensor>& sensor : sensors_) sensor->body -= sensor->body > body ? 1 : 0;
-}
+void ImuOutputs::removeBody(std::size_t body) { sensors_.erase(body); }
 
 std::vector<geometry_msgs::TransformStamped> ImuOutputs::sensorFrames(const ros::Time& stamp) const {
   std::vector<geometry_msgs::TransformStamped> frames;
-  for (const std::unique_ptr<Sensor>& sensor : sensors_) {
+  for (const auto& entry : sensors_.entries()) {
+    const Sensor* sensor = entry->handles.get();
     Eigen::Isometry3d X_PS = Eigen::Isometry3d::Identity();
     X_PS.linear() = sensor->config.orientation.toRotationMatrix();
     X_PS.translation() = sensor->config.position;
     geometry_msgs::TransformStamped frame = tf2::eigenToTransform(Eigen::Affine3d(X_PS.matrix()));
     frame.header.stamp = stamp;
-    frame.header.frame_id = config_.bodies[sensor->body].body_frame;
+    frame.header.frame_id = config_.bodies[entry->body].body_frame;
     frame.child_frame_id = sensor->config.frame;
     frames.push_back(frame);
   }
@@ -74,16 +70,16 @@ std::vector<geometry_msgs::TransformStamped> ImuOutputs::sensorFrames(const ros:
 }
 
 void ImuOutputs::publish(const rigid_body::World& world) {
-  for (const std::unique_ptr<Sensor>& sensor : sensors_) {
-    if (sensor->schedule.due(world.stamp(), rigid_body::toNanoseconds(1.0 / sensor->config.rate))) {
-      publishSensor(world, *sensor);
+  for (const auto& entry : sensors_.entries()) {
+    Sensor& sensor = *entry->handles;
+    if (sensor.schedule.due(world.stamp(), rigid_body::toNanoseconds(1.0 / sensor.config.rate))) {
+      publishSensor(world, entry->body, sensor);
     }
   }
 }
 
-void ImuOutputs::publishSensor(const rigid_body::World& world, Sensor& sensor) {
+void ImuOutputs::publishSensor(const rigid_body::World& world, std::size_t body, Sensor& sensor) {
   const rigid_body::Scene& scene = world.scene();
-  const std::size_t body = sensor.body;
   // The contacts of the last step act through their mean force over it (imu.hpp); a body without a
   // collision shape has none.
   const rigid_body::Wrench contact =

@@ -51,29 +51,26 @@ Outputs::Outputs(ros::NodeHandle& nh, const NodeConfig& config, OwnTransforms& o
       queue_(config.lockstep ? 100 : 10),
       own_transforms_(own_transforms) {
   if (config.publish.tf) own_transforms_.advertise(nh);
-  const uint32_t queue = queue_;
-  if (config.publish.state) {
-    states_message_.header.frame_id = config.world_frame;
-  }
+  if (config.publish.state) states_message_.header.frame_id = config.world_frame;
   for (std::size_t body = 0; body < config.bodies.size(); ++body) addBody(body);
   if (!config.publish.per_body_topics && config.publish.odom) {
     // One topic for the whole scene, filled only while someone listens.
     array_message_.header.frame_id = config.world_frame;
     array_publisher_ = nh.advertise<rigid_body_sim::OdometryArray>(
-        "bodies/odom", queue, [this](const ros::SingleSubscriberPublisher&) { ++array_subscribers_; },
+        "bodies/odom", queue_, [this](const ros::SingleSubscriberPublisher&) { ++array_subscribers_; },
         [this](const ros::SingleSubscriberPublisher&) { --array_subscribers_; });
   }
   if (config.publish.state) {
     // One topic for the whole scene in every scene (as Gazebo's model_states), filled only while listened to.
     states_publisher_ = nh.advertise<rigid_body_sim::BodyStates>(
-        "bodies/states", queue, [this](const ros::SingleSubscriberPublisher&) { ++states_subscribers_; },
+        "bodies/states", queue_, [this](const ros::SingleSubscriberPublisher&) { ++states_subscribers_; },
         [this](const ros::SingleSubscriberPublisher&) { --states_subscribers_; });
   }
   if (config.lockstep || config.publish.clock) clock_publisher_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
 }
 
 void Outputs::addBody(std::size_t body) {
-  channels_.insert(channels_.begin() + static_cast<std::ptrdiff_t>(body), std::make_unique<Channel>());
+  channels_.push_back(std::make_unique<Channel>());
   Channel& channel = *channels_[body];
   const BodyConfig& config = config_.bodies[body];
   // Ground truth: the covariances stay zero.
@@ -84,13 +81,12 @@ void Outputs::addBody(std::size_t body) {
     geometry_msgs::TransformStamped transform;
     transform.header.frame_id = config_.world_frame;
     transform.child_frame_id = config.body_frame;
-    transforms_.insert(transforms_.begin() + static_cast<std::ptrdiff_t>(body), transform);
+    transforms_.push_back(transform);
   }
   if (config_.publish.state) {
-    const auto at = static_cast<std::ptrdiff_t>(body);
-    states_message_.name.insert(states_message_.name.begin() + at, config.body_frame);
-    states_message_.pose.insert(states_message_.pose.begin() + at, geometry_msgs::Pose());
-    states_message_.twist.insert(states_message_.twist.begin() + at, geometry_msgs::Twist());
+    states_message_.name.push_back(config.body_frame);
+    states_message_.pose.emplace_back();
+    states_message_.twist.emplace_back();
   }
 }
 
@@ -106,8 +102,6 @@ void Outputs::removeBody(std::size_t body) {
 }
 
 void Outputs::advertise(Channel& channel, const BodyConfig& config, std::size_t body) {
-  ros::NodeHandle& nh = nh_;
-  const uint32_t queue = queue_;
   channel.state_message.header.frame_id = config_.world_frame;
   channel.state_message.child_frame_id = config.body_frame;
   channel.applied_wrench_message.header.frame_id = config_.world_frame;
@@ -121,7 +115,7 @@ void Outputs::advertise(Channel& channel, const BodyConfig& config, std::size_t 
     const ros::SubscriberStatusCallback disconnected = [counted, count](const ros::SingleSubscriberPublisher&) {
       --(counted->*count);
     };
-    return nh.advertise<decltype(message)>(config.topic(topic), queue, connected, disconnected);
+    return nh_.advertise<decltype(message)>(config.topic(topic), queue_, connected, disconnected);
   };
   if (config_.publish.odom) channel.odom = advertise(nav_msgs::Odometry(), "odom", &Channel::odom_subscribers);
   if (config_.publish.state) {
@@ -137,7 +131,7 @@ void Outputs::advertise(Channel& channel, const BodyConfig& config, std::size_t 
     channel.contacts = advertise(rigid_body_sim::Contacts(), "contacts", &Channel::contacts_subscribers);
   }
   if (config_.noise.enabled()) {
-    channel.noise = std::make_unique<OdometryNoise>(nh, config.topic("odom_noisy"), queue, config_.noise,
+    channel.noise = std::make_unique<OdometryNoise>(nh_, config.topic("odom_noisy"), queue_, config_.noise,
                                                     config_.rate, body);  // one stream per body
   }
 }

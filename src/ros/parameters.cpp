@@ -444,10 +444,14 @@ std::string resolveMeshUri(const std::string& uri) {
   return path + rest.substr(package.size());
 }
 
+ParameterReader parameterServerReader() {
+  return [](const std::string& name, std::string& value) { return ros::param::get(name, value); };
+}
+
 NodeConfig loadConfig(const ros::NodeHandle& private_nh) {
   XmlRpcValue params;
   if (!ros::param::get(private_nh.getNamespace(), params)) params = XmlRpcValue();
-  return parseConfig(params, [](const std::string& name, std::string& value) { return ros::param::get(name, value); });
+  return parseConfig(params, parameterServerReader());
 }
 
 std::string BodyConfig::shapeLabel() const {

@@ -72,11 +72,15 @@ void SimulatorNode::advertiseEditServices() {
       }));
 }
 
-void SimulatorNode::addToComponents(std::size_t body) {
+void SimulatorNode::addToComponents(const BodyConfig& config) {
+  config_.bodies.push_back(config);
+  const std::size_t body = config_.bodies.size() - 1;
   wrench_input_.addBody(body);
   outputs_.addBody(body);
   imu_.addBody(body);
   services_.addBody(body);
+  markers_.bodiesChanged(body);
+  publishStaticFrames(toRosTime(world_.stamp()));  // its mesh and sensor frames, if any
 }
 
 void SimulatorNode::removeFromComponents(std::size_t body) {
@@ -84,14 +88,15 @@ void SimulatorNode::removeFromComponents(std::size_t body) {
   outputs_.removeBody(body);
   imu_.removeBody(body);
   services_.removeBody(body);
+  config_.bodies.erase(config_.bodies.begin() + static_cast<std::ptrdiff_t>(body));
+  markers_.bodiesChanged(config_.bodies.size() + 1);
+  publishStaticFrames(toRosTime(world_.stamp()));  // without its mesh and sensor frames
 }
 
 bool SimulatorNode::spawn(const std::string& yaml, std::string& message) {
   BodyConfig body;
   try {
-    body = parseSpawnedBody(yaml, config_, [](const std::string& name, std::string& value) {
-      return ros::param::get(name, value);
-    });
+    body = parseSpawnedBody(yaml, config_, parameterServerReader());
   } catch (const ParameterError& error) {
     message = error.what();
     refuseEdit(message);
@@ -105,12 +110,7 @@ bool SimulatorNode::spawn(const std::string& yaml, std::string& message) {
     refuseEdit(message);
     return false;
   }
-  const std::size_t before = config_.bodies.size();
-  config_.bodies.push_back(body);
-  addToComponents(index);
-  markers_.bodiesChanged(before);
-  const ros::Time stamp = toRosTime(world_.stamp());
-  outputs_.publishStaticFrames(stamp, imu_.sensorFrames(stamp));  // its mesh and sensor frames, if any
+  addToComponents(body);  // at `index`, the last, as in the World
   logBody(index);
   message = "spawned " + body.name + " (" + body.body_frame + ") at t = " + std::to_string(toSeconds(world_.stamp())) + " s";
   ROS_INFO("rigid_body_node: %s", message.c_str());
@@ -131,11 +131,6 @@ bool SimulatorNode::remove(const std::string& name, std::string& message) {
     return false;
   }
   removeFromComponents(body);
-  const std::size_t before = config_.bodies.size();
-  config_.bodies.erase(config_.bodies.begin() + static_cast<std::ptrdiff_t>(body));
-  markers_.bodiesChanged(before);
-  const ros::Time stamp = toRosTime(world_.stamp());
-  outputs_.publishStaticFrames(stamp, imu_.sensorFrames(stamp));  // without its mesh and sensor frames
   message = "removed " + name + " at t = " + std::to_string(toSeconds(world_.stamp())) + " s";
   ROS_INFO("rigid_body_node: %s", message.c_str());
   return true;

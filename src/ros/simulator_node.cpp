@@ -88,7 +88,7 @@ void SimulatorNode::start(const ros::Time& start_time) {
   world_.setRecordContacts(true);
   ROS_INFO("rigid_body_node: %s", config_.describe().c_str());
   for (std::size_t body = 0; body < config_.bodies.size(); ++body) logBody(body);
-  outputs_.publishStaticFrames(start_time, imu_.sensorFrames(start_time));
+  publishStaticFrames(start_time);
   if (config_.lockstep) return;
   const double period = 1.0 / config_.rate;
   timer_ = nh_.createTimer(ros::Duration(period), [this, period](const ros::TimerEvent&) {
@@ -96,6 +96,10 @@ void SimulatorNode::start(const ros::Time& start_time) {
     guarded([this] { update(ros::Time::now()); });
     if ((ros::WallTime::now() - begin).toSec() > period) diagnostics_.countOverrun();
   });
+}
+
+void SimulatorNode::publishStaticFrames(const ros::Time& stamp) {
+  outputs_.publishStaticFrames(stamp, imu_.sensorFrames(stamp));
 }
 
 rigid_body::UpdateResult SimulatorNode::advance(rigid_body::Nanoseconds now) {

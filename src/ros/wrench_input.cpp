@@ -55,19 +55,13 @@ WrenchInput::WrenchInput(ros::NodeHandle& nh, const NodeConfig& config, rigid_bo
 
 void WrenchInput::addBody(std::size_t body) {
   const BodyConfig& body_config = config_.bodies[body];
-  // The maps name bodies by index: those from `body` on move up one (none for a spawn, which appends).
-  for (auto* map : {&body_by_frame_, &body_by_name_}) {
-    if (body == messages_.size()) break;
-    for (auto& entry : *map) entry.second += entry.second >= body ? 1 : 0;
-  }
   body_by_frame_[body_config.body_frame] = body;
   if (!config_.publish.per_body_topics) body_by_name_[body_config.name] = body;
-  const auto at = static_cast<std::ptrdiff_t>(body);
-  messages_.insert(messages_.begin() + at, 0);
-  refused_messages_.insert(refused_messages_.begin() + at, 0);
+  messages_.push_back(0);
+  refused_messages_.push_back(0);
   if (!config_.publish.per_body_topics || !body_config.wrench_input) return;  // no input term: no subscriber
   // The callbacks read the body's index where the list keeps it up to date.
-  auto& own = topics_.insert(body);
+  auto& own = topics_.append(body);
   own.handles.stamped = nh_.subscribe<geometry_msgs::WrenchStamped>(
       body_config.topic("wrench"), kQueueSize,
       [this, &own](const geometry_msgs::WrenchStamped::ConstPtr& m) { onWrench(own.body, *m); });

@@ -137,7 +137,7 @@ TEST(BodySpawner, ALinkOfARobotDescriptionIsTheBodyStartUpMakesOfIt) {
     value = urdf_text;
     return true;
   };
-  for (const std::string yaml : {"{name: arm, urdf: '" + std::string(TEST_URDF_DIR) + "/offset_link.urdf', link: base_link}",
+  for (const std::string& yaml : {"{name: arm, urdf: '" + std::string(TEST_URDF_DIR) + "/offset_link.urdf', link: base_link}",
                                  std::string("{name: arm, robot_description: /robot_description, link: base_link}")}) {
     const BodyConfig spawned = rigid_body_ros::parseSpawnedBody(yaml, scene(), reader);
     EXPECT_EQ(spawned.name, "arm") << yaml;

@@ -1,6 +1,6 @@
-// Per-body ROS handles (subscribers, service servers) whose callbacks need their body's current index while
+// Per-body ROS handles (subscribers, service servers, sensors) that need their body's current index while
 // bodies are spawned and removed. Each entry lives on the heap, so the pointer a callback holds stays valid;
-// insert and erase keep every entry's index in step with the scene's body list.
+// a spawn appends, and erase keeps every entry's index in step with the scene's body list.
 #pragma once
 
 #include <algorithm>
@@ -18,9 +18,8 @@ class BodyList {
     Handles handles;
   };
 
-  /// A new entry for the body now at `body`; the entries from `body` on move up one index.
-  Entry& insert(std::size_t body) {
-    for (const auto& entry : entries_) entry->body += entry->body >= body ? 1 : 0;
+  /// A new entry for the body at `body`, the scene's last (bodies join at the end).
+  Entry& append(std::size_t body) {
     entries_.push_back(std::make_unique<Entry>());
     entries_.back()->body = body;
     return *entries_.back();
@@ -32,6 +31,8 @@ class BodyList {
     for (const auto& entry : entries_) entry->body -= entry->body > body ? 1 : 0;
   }
   std::size_t size() const { return entries_.size(); }
+  /// The entries, in the order they were appended.
+  const std::vector<std::unique_ptr<Entry>>& entries() const { return entries_; }
 
  private:
   std::vector<std::unique_ptr<Entry>> entries_;

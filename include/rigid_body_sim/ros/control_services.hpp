@@ -29,7 +29,7 @@ class ControlServices {
   ControlServices(ros::NodeHandle& nh, const NodeConfig& config, rigid_body::World& world, WrenchInput& wrench_input,
                   std::function<rigid_body::Nanoseconds()> now, std::function<void()> clock_moved);
 
-  /// A body the config now has at `body`: its services; the bodies from `body` on move up one index.
+  /// The body the config now has last, at `body`: its services.
   void addBody(std::size_t body);
   /// The body at `body` is gone: its services shut down, the later bodies move down one index.
   void removeBody(std::size_t body);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "rigid_body_sim/imu_noise.hpp"
+#include "rigid_body_sim/ros/body_list.hpp"
 #include "rigid_body_sim/ros/output_schedule.hpp"
 #include "rigid_body_sim/ros/parameters.hpp"
 #include "rigid_body_sim/world.hpp"
@@ -26,7 +27,7 @@ class ImuOutputs {
   void publish(const rigid_body::World& world);
   /// The fixed transforms body_frame → sensor frame, for the node's one static broadcast.
   std::vector<geometry_msgs::TransformStamped> sensorFrames(const ros::Time& stamp) const;
-  /// A body the config now has at `body`: its sensor, if it has one; the bodies from `body` on move up one.
+  /// The body the config now has last, at `body`: its sensor, if it has one.
   void addBody(std::size_t body);
   /// The body at `body` is gone: its sensor's publisher shuts down, the later bodies move down one index.
   void removeBody(std::size_t body);
@@ -35,7 +36,6 @@ class ImuOutputs {
 
  private:
   struct Sensor {
-    std::size_t body;
     ImuConfig config;  ///< a copy: the config's body list moves when bodies are spawned
     ros::Publisher publisher;
     OutputSchedule schedule;
@@ -44,11 +44,11 @@ class ImuOutputs {
     rigid_body::SensorNoiseModel orientation_noise;
     sensor_msgs::Imu message;  ///< frame and covariances filled once
   };
-  void publishSensor(const rigid_body::World& world, Sensor& sensor);
+  void publishSensor(const rigid_body::World& world, std::size_t body, Sensor& sensor);
 
   const NodeConfig& config_;
   ros::NodeHandle nh_;
-  std::vector<std::unique_ptr<Sensor>> sensors_;
+  BodyList<std::unique_ptr<Sensor>> sensors_;  ///< per body with an `imu`
   std::uint64_t withheld_ = 0;
 };
 

@@ -50,8 +50,7 @@ class Outputs {
   /// Largest ||q| − 1| published for a body since the last reset.
   double maxNormError(std::size_t body) const { return channels_[body]->max_norm_error; }
 
-  /// A body the config now has at `body` (spawned: the last), with its topics, tf and a place in the arrays;
-  /// the bodies from `body` on move up one index.
+  /// The body the config now has last, at `body`: its topics, tf and a place at the end of the arrays.
   void addBody(std::size_t body);
   /// The body at `body` is gone: its publishers shut down, the later bodies move down one index. Call before
   /// the config drops it.

@@ -176,6 +176,9 @@ struct NodeConfig {
 /// when it is not set or not text.
 using ParameterReader = std::function<bool(const std::string& name, std::string& value)>;
 
+/// The ParameterReader of the ROS parameter server (ros::param::get).
+ParameterReader parameterServerReader();
+
 /// Parses and validates the private namespace given as an XmlRpc struct (an invalid, i.e. unset, value
 /// means "all defaults"). Throws ParameterError on the first invalid parameter. Names the node does not
 /// know (e.g. "mas", "initial/postion") go to unknown_parameters. `reader` resolves ~robot_description.

@@ -71,9 +71,12 @@ class SimulatorNode {
   /// Logs a body's properties and its step, once (at start-up, at its spawn).
   void logBody(std::size_t body) const;
   void advertiseEditServices();
-  /// Every component takes the body the config has at `body`, or lets it go.
-  void addToComponents(std::size_t body);
+  /// The config appends `config` and every component takes it, or every component lets the body at `body`
+  /// go and the config drops it; the markers and the static frames follow.
+  void addToComponents(const BodyConfig& config);
   void removeFromComponents(std::size_t body);
+  /// The static tf of the bodies' mesh frames and sensors, in the node's one latched message.
+  void publishStaticFrames(const ros::Time& stamp);
   /// Counts a refused spawn or remove and warns (throttled: a client retrying in a loop does not flood the log).
   void refuseEdit(const std::string& message);
 

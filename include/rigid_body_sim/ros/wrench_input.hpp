@@ -74,7 +74,7 @@ class WrenchInput {
   std::uint64_t messages(std::size_t body) const { return messages_[body]; }
   std::uint64_t refusedMessages(std::size_t body) const { return refused_messages_[body]; }
 
-  /// A body the config now has at `body`: its wrench topics; the bodies from `body` on move up one index.
+  /// The body the config now has last, at `body`: its wrench topics.
   void addBody(std::size_t body);
   /// The body at `body` is gone: its subscribers shut down, the later bodies move down one index.
   void removeBody(std::size_t body);
