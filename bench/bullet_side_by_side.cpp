@@ -147,7 +147,7 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-Outcome runPackage(const Placement& pieces, const Walls& walls, const Run& run, int iterations) {
+Outcome runPackage(const Placement& pieces, const Walls& walls, const Run& run, int iterations, std::size_t threads) {
   ContactSetup setup;
   setup.settings.sleep = false;
   setup.settings.iterations = iterations;
@@ -181,6 +181,7 @@ Outcome runPackage(const Placement& pieces, const Walls& walls, const Run& run, 
     setup.bodies.push_back(shape);
   }
   Scene scene(bodies, IntegratorType::kRk4, kH, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+  scene.setThreads(threads);
   const auto positions = [&] {
     std::vector<Eigen::Vector3d> p;
     for (std::size_t i = 0; i < pieces.size(); ++i) p.push_back(scene.state(i).p_WB);
@@ -284,17 +285,23 @@ Outcome runBullet(const Placement& pieces, const Walls& walls, const Run& run, i
 }
 
 void compare(const std::string& name, const Placement& pieces, const Walls& walls, const Run& run, int iterations) {
-  const Outcome ours = runPackage(pieces, walls, run, iterations);
+  const Outcome ours = runPackage(pieces, walls, run, iterations, 1);
+  // Two threads: the same trajectory to the bit (the islands' solves spread over the pool), so only its time.
+  const Outcome ours_two = runPackage(pieces, walls, run, iterations, 2);
   const Outcome bullet = runBullet(pieces, walls, run, iterations);
   char motion[96] = "- | -";  // a drop has no resting pose to sag from or creep away from
   if (run.settle > 0) {
     std::snprintf(motion, sizeof motion, "%.3f / %.3f | %.4f / %.4f", ours.sag * 1e3, bullet.sag * 1e3,
                   ours.creep * 1e3, bullet.creep * 1e3);
   }
-  std::printf("| %s | %zu | %.3f | %.3f | %.2f | %s | %.2f / %.2f |\n", name.c_str(), pieces.size(),
-              ours.microseconds_per_body_step, bullet.microseconds_per_body_step,
-              ours.microseconds_per_body_step / bullet.microseconds_per_body_step, motion, ours.penetration * 1e3,
-              bullet.penetration * 1e3);
+  std::printf("| %s | %zu | %.3f | %.3f | %.3f | %.2f | %.2f | %s | %.2f / %.2f |\n", name.c_str(), pieces.size(),
+              ours.microseconds_per_body_step, ours_two.microseconds_per_body_step, bullet.microseconds_per_body_step,
+              ours.microseconds_per_body_step / bullet.microseconds_per_body_step,
+              ours_two.microseconds_per_body_step / bullet.microseconds_per_body_step, motion,
+              ours.penetration * 1e3, bullet.penetration * 1e3);
+  if (ours_two.creep != ours.creep || ours_two.penetration != ours.penetration) {
+    std::printf("(the two-thread run moved otherwise: creep %.17g against %.17g m)\n", ours_two.creep, ours.creep);
+  }
   std::fflush(stdout);
 }
 
@@ -310,12 +317,13 @@ int main(int argc, char** argv) {
   const char* pile_env = std::getenv("PILE_BODIES");
   const std::size_t pile_bodies = pile_env ? static_cast<std::size_t>(std::atol(pile_env)) : 1000;
   const int iterations = ContactSettings().iterations;  // the package's default sweeps, in both
-  std::printf("h = 1 ms, %d solver sweeps in both, mu = 0.5, e = 0, sleeping off, one thread; stacks and pyramid: "
+  std::printf("h = 1 ms, %d solver sweeps in both, mu = 0.5, e = 0, sleeping off, Bullet on one thread; stacks and pyramid: "
               "%.1f s to settle, then %.1f s timed; pile: %.1f s from the drop, timed\n\n",
               iterations, resting.settle * kH, resting.steps * kH, drop.steps * kH);
-  std::printf("| scene | bodies | package µs/body-step | Bullet µs/body-step | package/Bullet | sag mm (package / Bullet) "
-              "| creep mm (package / Bullet) | deepest mm (package / Bullet) |\n");
-  std::printf("|---|---|---|---|---|---|---|---|\n");
+  std::printf("| scene | bodies | package µs/body-step, 1 thread | 2 threads | Bullet µs/body-step | package/Bullet, "
+              "1 thread | 2 threads | sag mm (package / Bullet) | creep mm (package / Bullet) | deepest mm (package / "
+              "Bullet) |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
   std::vector<std::size_t> counts;
   for (int i = 1; i < argc; ++i) counts.push_back(static_cast<std::size_t>(std::atol(argv[i])));
   if (counts.empty()) counts = {100, 1000};

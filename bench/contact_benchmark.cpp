@@ -1,6 +1,7 @@
 // Cost of contact per body and step (Google Benchmark): N boxes resting on the ground apart from each other,
 // N boxes in stacks of 10 (every box touches two others or the ground), and N spheres in the air far apart
-// (the broad phase alone: no pair overlaps), all awake (sleeping off); and the stacks once asleep. Not a
+// (the broad phase alone: no pair overlaps), all awake (sleeping off); the stacks on two threads; and the
+// stacks once asleep. Not a
 // test: run by scripts/benchmark.sh; numbers in docs/performance.md. One iteration is 10 steps of 1 ms (the
 // node's default tick). Scenes without colliders are scene_benchmark's: their cost with contact compiled in is
 // measured there.
@@ -107,6 +108,12 @@ void stacks(benchmark::State& bench, IntegratorType type) {
   Scene scene = boxes(static_cast<std::size_t>(bench.range(0)), 10, type);
   run(bench, scene);
 }
+// The stacks with their islands' solves spread over two threads (docs/contact.md, "Islands").
+void stacks2Threads(benchmark::State& bench, IntegratorType type) {
+  Scene scene = boxes(static_cast<std::size_t>(bench.range(0)), 10, type);
+  scene.setThreads(2);
+  run(bench, scene);
+}
 void asleep(benchmark::State& bench, IntegratorType type) {
   Scene scene = boxes(static_cast<std::size_t>(bench.range(0)), 10, type, true);
   run(bench, scene);
@@ -124,6 +131,7 @@ BENCHMARK_CAPTURE(resting, semi_implicit_euler, IntegratorType::kSemiImplicitEul
 BENCHMARK_CAPTURE(stacks, rk4, IntegratorType::kRk4)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(stacks, semi_implicit_euler, IntegratorType::kSemiImplicitEuler)
     ->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(stacks2Threads, rk4, IntegratorType::kRk4)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(asleep, rk4, IntegratorType::kRk4)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(broadPhaseOnly)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
 

@@ -87,7 +87,8 @@ def contact(rows):
             scene, method, bodies = "broad phase only (no pair touches)", "semi_implicit_euler", int(parts[1])
         else:
             scene = {"resting": "resting on the ground", "stacks": "stacks of 10",
-                     "asleep": "stacks of 10, asleep"}.get(parts[0], parts[0])
+                     "asleep": "stacks of 10, asleep",
+                     "stacks2Threads": "stacks of 10, two threads"}.get(parts[0], parts[0])
             method, bodies = parts[1], int(parts[2])
         lines.append(f"| {scene} | {method} | {bodies} | {fmt(ns(entry) / (10 * bodies) / 1e3)} |")
     return lines
@@ -152,7 +153,8 @@ def main():
     page += ["", "## Contact", "",
              "`contact_benchmark`: one iteration 10 steps of 1 ms after 100 steps of settling; boxes "
              "(0.3 × 0.3 × 0.2 m) resting apart on the ground (four points each), the same boxes in stacks of "
-             "10, and spheres apart in zero g (the broad phase alone). The accuracy report's piles and "
+             "10 (also on two threads: the islands' solves spread over the pool, the same bits), and spheres "
+             "apart in zero g (the broad phase alone). The accuracy report's piles and "
              "SimBenchmark's scenes, with their accuracy: [REPORT.md](../report/REPORT.md).", ""]
     page += contact(medians(a.contact))
     bullet = text_block(a.bullet)

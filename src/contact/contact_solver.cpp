@@ -12,12 +12,18 @@ namespace {
 
 // The velocity change of body `s` along its three Jacobian columns (linear part d, angular part r × d) per
 // unit impulse along d: J_d = (d, r × d), and the contact's velocity along d is d·v + (r × d)·ω.
+// The environment (either side may be it) does not move and is not written: islands on other threads share
+// its entry.
 inline void applyImpulse(SolverBody& a, SolverBody& b, const SolverContact& c, const Eigen::Vector3d& linear,
                          const Eigen::Vector3d& coefficients) {
-  a.v += a.inverse_mass * linear;
-  a.w += c.response_a * coefficients;
-  b.v -= b.inverse_mass * linear;
-  b.w -= c.response_b * coefficients;
+  if (c.a != kEnvironment) {
+    a.v += a.inverse_mass * linear;
+    a.w += c.response_a * coefficients;
+  }
+  if (c.b != kEnvironment) {
+    b.v -= b.inverse_mass * linear;
+    b.w -= c.response_b * coefficients;
+  }
 }
 
 // Coulomb's law at one point, given the sticking impulse f* outside the disc |f| ≤ L: the impulse on the disc
@@ -63,7 +69,13 @@ Eigen::Vector3d relativeVelocity(const SolverContact& c, const std::vector<Solve
 }
 
 void prepareContacts(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options) {
-  for (SolverContact& c : contacts) {
+  prepareContacts(contacts, bodies, options, SolveRange::all(contacts.size(), bodies.size()));
+}
+
+void prepareContacts(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options,
+                     const SolveRange& range) {
+  for (std::size_t k = range.contact_begin; k < range.contact_end; ++k) {
+    SolverContact& c = contacts[k];
     const SolverBody& a = bodies[c.a];
     const SolverBody& b = bodies[c.b];
     Eigen::Matrix3d D;  // the directions n, t1, t2 as columns
@@ -88,7 +100,8 @@ void prepareContacts(std::vector<SolverContact>& contacts, std::vector<SolverBod
     // Speculative: a contact still apart may close its gap, but no more, within the next step.
     if (c.separation > 0.0 && options.dt > 0.0) c.target_speed = std::min(c.target_speed, -c.separation / options.dt);
   }
-  for (SolverContact& c : contacts) {  // warm start: last step's impulses as the first guess
+  for (std::size_t k = range.contact_begin; k < range.contact_end; ++k) {  // warm start: last step's impulses
+    const SolverContact& c = contacts[k];
     const Eigen::Vector3d coefficients(c.normal_impulse, c.friction_impulse.x(), c.friction_impulse.y());
     if (coefficients.isZero(0.0)) continue;
     applyImpulse(bodies[c.a], bodies[c.b], c, c.n * coefficients.x() + c.t1 * coefficients.y() + c.t2 * coefficients.z(),
@@ -97,13 +110,21 @@ void prepareContacts(std::vector<SolverContact>& contacts, std::vector<SolverBod
 }
 
 bool solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options) {
+  return solveVelocities(contacts, bodies, options, SolveRange::all(contacts.size(), bodies.size()));
+}
+
+bool solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options,
+                     const SolveRange& range) {
   bool converged = false;
-  const std::size_t budget = static_cast<std::size_t>(std::max(options.iterations, 0)) *
-                             std::max(options.sweep_budget_contacts, contacts.size());
-  const std::size_t sweeps = contacts.empty() ? 0 : budget / contacts.size();
+  const std::size_t count = range.contact_end - range.contact_begin;
+  const std::size_t shared = std::max(options.budget_contacts, count);
+  const std::size_t budget =
+      static_cast<std::size_t>(std::max(options.iterations, 0)) * std::max(options.sweep_budget_contacts, shared);
+  const std::size_t sweeps = count == 0 ? 0 : budget / shared;
   for (std::size_t iteration = 0; iteration < sweeps && !converged; ++iteration) {
     double largest_change = 0.0, largest_impulse = 0.0;
-    for (SolverContact& c : contacts) {
+    for (std::size_t k = range.contact_begin; k < range.contact_end; ++k) {
+      SolverContact& c = contacts[k];
       SolverBody& a = bodies[c.a];
       SolverBody& b = bodies[c.b];
       // Normal: v_n ≥ target, impulse ≥ 0 (a contact pushes, never pulls).
@@ -135,12 +156,13 @@ bool solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBod
     converged = largest_change <= tolerance * largest_impulse;
   }
   // The momentum changes, summed once from the final impulses (not per update in the loop).
-  for (SolverBody& body : bodies) body.dP.setZero(), body.dL.setZero();
-  for (const SolverContact& c : contacts) {
+  for (std::size_t s = range.body_begin; s < range.body_end; ++s) bodies[s].dP.setZero(), bodies[s].dL.setZero();
+  for (std::size_t k = range.contact_begin; k < range.contact_end; ++k) {
+    const SolverContact& c = contacts[k];
     const Eigen::Vector3d coefficients(c.normal_impulse, c.friction_impulse.x(), c.friction_impulse.y());
     const Eigen::Vector3d impulse = c.n * coefficients.x() + c.t1 * coefficients.y() + c.t2 * coefficients.z();
-    bodies[c.a].dP += impulse, bodies[c.a].dL += c.cross_a * coefficients;
-    bodies[c.b].dP -= impulse, bodies[c.b].dL -= c.cross_b * coefficients;
+    if (c.a != kEnvironment) bodies[c.a].dP += impulse, bodies[c.a].dL += c.cross_a * coefficients;
+    if (c.b != kEnvironment) bodies[c.b].dP -= impulse, bodies[c.b].dL -= c.cross_b * coefficients;
   }
   return converged;
 }
@@ -241,10 +263,11 @@ void solveImpact(std::vector<SolverContact>& contacts, std::vector<SolverBody>& 
 }
 
 void projectPositions(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, int iterations,
-                      double slop, double correction) {
+                      double slop, double correction, const SolveRange& range) {
   for (int iteration = 0; iteration < iterations; ++iteration) {
     double deepest = 0.0;
-    for (SolverContact& c : contacts) {
+    for (std::size_t k = range.contact_begin; k < range.contact_end; ++k) {
+      SolverContact& c = contacts[k];
       SolverBody& a = bodies[c.a];
       SolverBody& b = bodies[c.b];
       // The separation now, to first order in what the bodies have moved since detection.
@@ -255,8 +278,8 @@ void projectPositions(std::vector<SolverContact>& contacts, std::vector<SolverBo
       if (error < 0.0 && !bouncing) {
         deepest = std::min(deepest, error);
         const double push = -correction * error * c.normal_mass;
-        a.dx += a.inverse_mass * push * c.n, a.dtheta += push * c.response_a.col(0);
-        b.dx -= b.inverse_mass * push * c.n, b.dtheta -= push * c.response_b.col(0);
+        if (c.a != kEnvironment) a.dx += a.inverse_mass * push * c.n, a.dtheta += push * c.response_a.col(0);
+        if (c.b != kEnvironment) b.dx -= b.inverse_mass * push * c.n, b.dtheta -= push * c.response_b.col(0);
       }
       if (!c.anchored) continue;
       // The anchors' tangential gap now, to first order as the separation; a push p along (t1, t2) changes
@@ -266,7 +289,10 @@ void projectPositions(std::vector<SolverContact>& contacts, std::vector<SolverBo
           c.anchor_gap.y() + c.t2.dot(a.dx - b.dx) + c.cross_a.col(2).dot(a.dtheta) - c.cross_b.col(2).dot(b.dtheta));
       const Eigen::Vector2d push = -correction * (c.tangent_mass * gap);
       const Eigen::Vector3d linear = push.x() * c.t1 + push.y() * c.t2;
-      a.dx += a.inverse_mass * linear, a.dtheta += c.response_a.col(1) * push.x() + c.response_a.col(2) * push.y();
+      if (c.a != kEnvironment) {
+        a.dx += a.inverse_mass * linear, a.dtheta += c.response_a.col(1) * push.x() + c.response_a.col(2) * push.y();
+      }
+      if (c.b == kEnvironment) continue;
       b.dx -= b.inverse_mass * linear, b.dtheta -= c.response_b.col(1) * push.x() + c.response_b.col(2) * push.y();
     }
     if (deepest == 0.0) break;

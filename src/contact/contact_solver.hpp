@@ -69,6 +69,10 @@ struct SolveOptions {
   /// converges (a heavy box on a light one needs hundreds of sweeps, the impulse crossing a mass ratio of
   /// 1 000 a little at each), a large one costs what `iterations` sweeps cost.
   std::size_t sweep_budget_contacts = 100;
+  /// The contacts the sweep budget is shared over (0: this solve's own). An island of a larger solve sweeps
+  /// as often as the whole solve would (SolverIslands): its cost and bits then do not depend on how the
+  /// scene falls into islands or threads.
+  std::size_t budget_contacts = 0;
   double restitution_threshold = 0.05;  ///< [m/s]
   bool bounce = true;                   ///< apply restitution to approaches faster than the threshold
   double dt = 0.0;                      ///< > 0: a separated contact (separation > 0) may close at separation/dt
@@ -77,16 +81,31 @@ struct SolveOptions {
 /// A solver body for the environment, to put first in the bodies' list.
 SolverBody environmentBody();
 
+/// The part of a solve's lists one call works on: contacts [contact_begin, contact_end) acting on bodies
+/// [body_begin, body_end) and the environment, and on no other body (an island; or everything, with
+/// body_begin = 0). Nothing is written to the environment's entry, so calls on disjoint ranges of the same
+/// lists may run on different threads.
+struct SolveRange {
+  std::size_t contact_begin = 0, contact_end = 0;
+  std::size_t body_begin = 0, body_end = 0;
+  /// The whole of both lists.
+  static SolveRange all(std::size_t contacts, std::size_t bodies) { return {0, contacts, 0, bodies}; }
+};
+
 /// The relative velocity of the contact point of a with respect to b's.
 Eigen::Vector3d relativeVelocity(const SolverContact& contact, const std::vector<SolverBody>& bodies);
 
 /// Jacobian products, effective masses and target speeds from the bodies' current velocities; applies the
 /// warm-start impulses the contacts carry.
+void prepareContacts(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options,
+                     const SolveRange& range);
 void prepareContacts(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options);
 
 /// Sequential impulses until every contact meets its target within rounding or the iterations run out;
 /// then each body's dP and dL are summed from the contacts' impulses. Returns whether it converged (a
 /// sweep changed no impulse by more than rounding) before the iterations ran out.
+bool solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options,
+                     const SolveRange& range);
 bool solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options);
 
 /// An impact at one instant: Poisson's restitution with Coulomb friction, bounded in energy (docs/references.md,
@@ -105,7 +124,7 @@ void solveImpact(std::vector<SolverContact>& contacts, std::vector<SolverBody>& 
 /// potential energy of its depth to a rebound that already has its kinetic energy). The separations count the bodies' dx and dtheta as they stand (what the step
 /// has already moved them since detection) to first order.
 void projectPositions(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, int iterations,
-                      double slop, double correction);
+                      double slop, double correction, const SolveRange& range);
 
 }  // namespace contact
 }  // namespace rigid_body

@@ -171,7 +171,8 @@ void ContactStep::restart(const std::vector<State>& states) {
 }
 
 void ContactStep::step(SceneBodies& bodies, const std::vector<char>& running, double h,
-                       std::vector<StepStatus>& failed) {
+                       std::vector<StepStatus>& failed, ThreadPool* pool) {
+  pool_ = pool;
   if (sleep_.anyAsleep()) wakeReachedIslands(bodies, running, h);
   syncSleep();  // islands woken from outside (a new input, a force model) leave Bullet's sleep here
   awake_.resize(colliders_.size());
@@ -347,45 +348,32 @@ const ContactStep::WarmPoint* ContactStep::warmStart(SolverContact& c, const Con
   return best;
 }
 
-void ContactStep::limitLiftOfNewContacts() {
-  // A contact made within the step (after a located impact, or a landing found at the step's end) has not
-  // pushed for the whole step: its body's fall was partly free flight, and undoing all of it by c h Δv would
-  // lift the contact off the surface (at h = 10 ms a ball hopped for ever: each landing lifted it by c h of
-  // its arrival speed). So a body moves by c h Δv only as far as brings such a contact to the surface, to
-  // first order in the move (as the projection measures it); a new contact that bounces is not lifted at all
-  // (its rebound already has the kinetic energy of its arrival, and the lift would add potential energy).
-  lift_share_.assign(solver_bodies_.size(), 1.0);
-  bool limited = false;
-  for (const SolverContact& c : solver_contacts_) {
-    if (c.sustained) continue;
-    const SolverBody& a = solver_bodies_[c.a];
-    const SolverBody& b = solver_bodies_[c.b];
-    const double lift = c.n.dot(a.dx - b.dx) + c.cross_a.col(0).dot(a.dtheta) - c.cross_b.col(0).dot(b.dtheta);
-    const bool bouncing = c.target_speed > 0.0;
-    if (!(lift > 0.0) || (c.separation + lift <= 0.0 && !bouncing)) continue;
-    const double share = bouncing ? 0.0 : std::max(0.0, -c.separation) / lift;
-    lift_share_[c.a] = std::min(lift_share_[c.a], share);
-    lift_share_[c.b] = std::min(lift_share_[c.b], share);
-    limited = true;
-  }
-  if (!limited) return;
-  for (std::size_t s = 1; s < solver_bodies_.size(); ++s) {  // 0 is the environment
-    solver_bodies_[s].dx *= lift_share_[s];
-    solver_bodies_[s].dtheta *= lift_share_[s];
-  }
-}
-
 void ContactStep::solveResting(SceneBodies& bodies, double h) {
   solver_contacts_.clear();
   solver_points_.clear();
   solver_anchors_.clear();
   startSolverLists();
-  for (const ContactPoint& point : points_) {
+  admitted_.clear();
+  admitted_links_.clear();
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    const ContactPoint& point = points_[i];
     const bool touching = wasTouching(pairKey(point.a, point.b));
     if (point.distance > (touching ? settings_.penetration_slop : 0.0)) continue;
     statistics_.max_penetration = std::max(statistics_.max_penetration, -point.distance);
-    addContact(point, bodies, true);
+    admitted_.push_back(i);
+    admitted_links_.emplace_back(point.a, point.b);
   }
+  // The solver's lists island by island (solver_islands.hpp): a body enters them with its island's first
+  // contact, so each island's bodies follow each other too.
+  islands_.group(admitted_links_, colliders_.size());
+  island_body_start_.clear();
+  for (std::size_t island = 0; island < islands_.islands(); ++island) {
+    island_body_start_.push_back(solver_bodies_.size());
+    for (std::size_t j = islands_.islandStart(island); j < islands_.islandStart(island + 1); ++j) {
+      addContact(points_[admitted_[islands_.order()[j]]], bodies, true);
+    }
+  }
+  island_body_start_.push_back(solver_bodies_.size());
   // A sleeping island's pairs are still touching (not tested while it sleeps): kept for when it wakes.
   kept_touching_.clear();
   if (sleep_.anyAsleep()) {
@@ -409,23 +397,15 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
     return;
   }
 
-  SolveOptions options;
-  options.iterations = settings_.iterations;
-  options.restitution_threshold = settings_.restitution_threshold;
-  options.dt = h;
-  prepareContacts(solver_contacts_, solver_bodies_, options);
-  const bool converged = solveVelocities(solver_contacts_, solver_bodies_, options);
-  // The impulses stand for a contact force constant over the step: besides the momenta they move the body
-  // by c h Δv (and turn it by c h Δω), as the integrator would have moved it under that force; then the
-  // projection.
-  const double weight = h * integratorInfo(integrator_type_).constant_force_weight;
-  for (SolverBody& s : solver_bodies_) {
-    s.dx = weight * s.inverse_mass * s.dP;
-    s.dtheta = weight * (s.inverse_inertia_W * s.dL);
-  }
-  limitLiftOfNewContacts();
-  projectPositions(solver_contacts_, solver_bodies_, settings_.position_iterations, settings_.penetration_slop,
-                   settings_.position_correction);
+  RestingSolveSettings solve;
+  solve.options.iterations = settings_.iterations;
+  solve.options.restitution_threshold = settings_.restitution_threshold;
+  solve.options.dt = h;
+  solve.move_weight = h * integratorInfo(integrator_type_).constant_force_weight;
+  solve.position_iterations = settings_.position_iterations;
+  solve.penetration_slop = settings_.penetration_slop;
+  solve.position_correction = settings_.position_correction;
+  islands_.solve(solver_contacts_, solver_bodies_, island_body_start_, solve, pool_);
   for (std::size_t s = 1; s < solver_bodies_.size(); ++s) {  // 0 is the environment
     const std::size_t k = solver_body_of_[s];
     State& state = bodies.states[colliders_[k]];
@@ -435,10 +415,10 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
     rotate(state.q_WB, solver_bodies_[s].dtheta);
     solver_of_[k] = kUnassigned;
   }
-  rememberContacts(bodies, h, converged);
+  rememberContacts(bodies, h);
 }
 
-void ContactStep::rememberContacts(const SceneBodies& bodies, double h, bool converged) {
+void ContactStep::rememberContacts(const SceneBodies& bodies, double h) {
   warm_next_.clear();
   for (std::size_t i = 0; i < solver_contacts_.size(); ++i) {
     const SolverContact& c = solver_contacts_[i];
@@ -458,7 +438,7 @@ void ContactStep::rememberContacts(const SceneBodies& bodies, double h, bool con
     const bool starts = !c.anchored && !curved_[point.a] && !curved_[point.b] && c.normal_impulse > 0.0 &&
                         f2 < kStartingFriction * kStartingFriction * limit * limit;
     const bool keeps = c.anchored && (c.normal_impulse == 0.0 || f2 < limit * limit);
-    const bool sticking = !converged && slow && (starts || keeps);
+    const bool sticking = !islands_.converged(i) && slow && (starts || keeps);
     std::pair<Eigen::Vector3d, Eigen::Vector3d> anchors = solver_anchors_[i];
     if (sticking && starts) {
       anchors = {inObjectFrame(point.a, point.on_a, bodies), inObjectFrame(point.b, point.on_b, bodies)};

@@ -14,6 +14,7 @@
 #include "collision_world.hpp"
 #include "contact_solver.hpp"
 #include "island_sleep.hpp"
+#include "solver_islands.hpp"
 #include "rigid_body_sim/contact.hpp"
 #include "rigid_body_sim/dynamics.hpp"
 #include "rigid_body_sim/integrators.hpp"
@@ -51,8 +52,10 @@ class ContactStep {
 
   /// One step of h for the colliding bodies whose `running[k]` is set. A body whose free step fails, or
   /// whose result is not finite, keeps its state from before the step and gets `failed[k]`; such a step is
-  /// counted as refused and reports no contacts.
-  void step(SceneBodies& bodies, const std::vector<char>& running, double h, std::vector<StepStatus>& failed);
+  /// counted as refused and reports no contacts. The resting solve's islands go to `pool` (null: the
+  /// caller's thread alone); the result does not depend on its thread count.
+  void step(SceneBodies& bodies, const std::vector<char>& running, double h, std::vector<StepStatus>& failed,
+            ThreadPool* pool = nullptr);
 
   /// Empty if colliding body k may be at `state` (apart from the environment and the other bodies as they
   /// stand in `states`, within the slop, and not inside a closed environment mesh); otherwise a message
@@ -138,9 +141,14 @@ class ContactStep {
   std::size_t solverIndex(const SceneBodies& bodies, std::size_t object);
   void addContact(const ContactPoint& point, const SceneBodies& bodies, bool resting);
   void solveResting(SceneBodies& bodies, double h);
-  void limitLiftOfNewContacts();
-  // The solved contacts as next step's warm starts (with their anchors) and, while recording, as reports.
-  void rememberContacts(const SceneBodies& bodies, double h, bool converged);
+  // The solved contacts as next step's warm starts (with their anchors: only where the island's solve did not
+  // converge) and, while recording, as reports.
+  void rememberContacts(const SceneBodies& bodies, double h);
+  SolverIslands islands_;
+  std::vector<std::size_t> admitted_;  // scratch: the points the resting solve takes
+  std::vector<std::pair<std::size_t, std::size_t>> admitted_links_;  // their objects
+  std::vector<std::size_t> island_body_start_;  // per island: its first solver body (then one past the last)
+  ThreadPool* pool_ = nullptr;  // the scene's, for the islands; set for the duration of a step
 
   std::unique_ptr<CollisionWorld> world_;
   std::vector<std::size_t> colliders_;
@@ -152,7 +160,6 @@ class ContactStep {
   std::vector<char> fast_;                  // per colliding body: moved far enough in the step to sweep
   std::vector<Eigen::Vector3d> swept_low_, swept_high_;  // per colliding body: the box its step sweeps
   std::vector<std::size_t> near_;           // scratch: objects near a swept box
-  std::vector<double> lift_share_;          // scratch: per solver body, the share of c h Δv it moves by
   std::vector<char> reserved_;              // per colliding body: in a located impact of this step already
   // An impact's chain: its bodies (collision objects), each pair's range in solver_contacts_, scratch.
   std::vector<std::size_t> chain_;

@@ -1,0 +1,139 @@
+#include "solver_islands.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace rigid_body {
+namespace contact {
+
+namespace {
+
+constexpr std::size_t kNoIsland = std::numeric_limits<std::size_t>::max();
+// Islands go to the threads in blocks of about this many contacts: enough work per hand-out that the pool's
+// wake-ups stay small beside it, and enough blocks that two threads share a scene of a few stacks.
+constexpr std::size_t kContactsPerBlock = 128;
+
+// A contact made within the step (after a located impact, or a landing found at the step's end) has not
+// pushed for the whole step: its body's fall was partly free flight, and undoing all of it by c h Δv would
+// lift the contact off the surface (at h = 10 ms a ball hopped for ever: each landing lifted it by c h of
+// its arrival speed). So a body moves by c h Δv only as far as brings such a contact to the surface, to
+// first order in the move (as the projection measures it); a new contact that bounces is not lifted at all
+// (its rebound already has the kinetic energy of its arrival, and the lift would add potential energy).
+void limitLiftOfNewContacts(const std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies,
+                            const SolveRange& range, std::vector<double>& lift_share) {
+  for (std::size_t s = range.body_begin; s < range.body_end; ++s) lift_share[s] = 1.0;
+  bool limited = false;
+  for (std::size_t k = range.contact_begin; k < range.contact_end; ++k) {
+    const SolverContact& c = contacts[k];
+    if (c.sustained) continue;
+    const SolverBody& a = bodies[c.a];
+    const SolverBody& b = bodies[c.b];
+    const double lift = c.n.dot(a.dx - b.dx) + c.cross_a.col(0).dot(a.dtheta) - c.cross_b.col(0).dot(b.dtheta);
+    const bool bouncing = c.target_speed > 0.0;
+    if (!(lift > 0.0) || (c.separation + lift <= 0.0 && !bouncing)) continue;
+    const double share = bouncing ? 0.0 : std::max(0.0, -c.separation) / lift;
+    if (c.a != kEnvironment) lift_share[c.a] = std::min(lift_share[c.a], share);
+    if (c.b != kEnvironment) lift_share[c.b] = std::min(lift_share[c.b], share);
+    limited = true;
+  }
+  if (!limited) return;
+  for (std::size_t s = std::max<std::size_t>(range.body_begin, 1); s < range.body_end; ++s) {  // 0: environment
+    bodies[s].dx *= lift_share[s];
+    bodies[s].dtheta *= lift_share[s];
+  }
+}
+
+}  // namespace
+
+bool solveRestingContacts(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies,
+                          const RestingSolveSettings& settings, const SolveRange& range,
+                          std::vector<double>& lift_share) {
+  prepareContacts(contacts, bodies, settings.options, range);
+  const bool converged = solveVelocities(contacts, bodies, settings.options, range);
+  // The impulses stand for a contact force constant over the step: besides the momenta they move the body
+  // by c h Δv (and turn it by c h Δω), as the integrator would have moved it under that force; then the
+  // projection.
+  for (std::size_t s = range.body_begin; s < range.body_end; ++s) {
+    SolverBody& body = bodies[s];
+    body.dx = settings.move_weight * body.inverse_mass * body.dP;
+    body.dtheta = settings.move_weight * (body.inverse_inertia_W * body.dL);
+  }
+  limitLiftOfNewContacts(contacts, bodies, range, lift_share);
+  projectPositions(contacts, bodies, settings.position_iterations, settings.penetration_slop,
+                   settings.position_correction, range);
+  return converged;
+}
+
+std::size_t SolverIslands::root(std::size_t body) {
+  while (parent_[body] != body) {
+    parent_[body] = parent_[parent_[body]];  // path halving
+    body = parent_[body];
+  }
+  return body;
+}
+
+void SolverIslands::group(const std::vector<std::pair<std::size_t, std::size_t>>& links, std::size_t bodies) {
+  parent_.resize(bodies);
+  for (std::size_t k = 0; k < bodies; ++k) parent_[k] = k;
+  for (const auto& [first, second] : links) {
+    if (first >= bodies || second >= bodies) continue;
+    const std::size_t a = root(first), b = root(second);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+  // Islands (of the bodies that have a point) numbered by their smallest body, its root; then the points
+  // counted into place, each island's in their given order.
+  const auto bodyOf = [&](std::size_t i) { return links[i].first < bodies ? links[i].first : links[i].second; };
+  island_of_root_.assign(bodies, kNoIsland);
+  for (std::size_t i = 0; i < links.size(); ++i) island_of_root_[root(bodyOf(i))] = 0;
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < bodies; ++k) {
+    if (island_of_root_[k] != kNoIsland) island_of_root_[k] = count++;
+  }
+  island_of_point_.resize(links.size());
+  island_start_.assign(count + 1, 0);
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    island_of_point_[i] = island_of_root_[root(bodyOf(i))];
+    ++island_start_[island_of_point_[i] + 1];
+  }
+  for (std::size_t island = 0; island < count; ++island) island_start_[island + 1] += island_start_[island];
+  next_.assign(island_start_.begin(), island_start_.end() - 1);
+  order_.resize(links.size());
+  island_of_contact_.resize(links.size());
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    const std::size_t j = next_[island_of_point_[i]]++;
+    order_[j] = i;
+    island_of_contact_[j] = island_of_point_[i];
+  }
+}
+
+void SolverIslands::solve(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies,
+                          const std::vector<std::size_t>& body_start, const RestingSolveSettings& settings,
+                          ThreadPool* pool) {
+  const std::size_t count = islands();
+  island_converged_.assign(count, 0);
+  lift_share_.resize(bodies.size());
+  RestingSolveSettings shared = settings;
+  shared.options.budget_contacts = contacts.size();
+  const auto rangeOf = [&](std::size_t island) {
+    return SolveRange{island_start_[island], island_start_[island + 1], body_start[island], body_start[island + 1]};
+  };
+  block_end_.clear();
+  std::size_t in_block = 0;
+  for (std::size_t island = 0; island < count; ++island) {
+    in_block += island_start_[island + 1] - island_start_[island];
+    if (in_block >= kContactsPerBlock || island + 1 == count) block_end_.push_back(island + 1), in_block = 0;
+  }
+  const auto solveBlock = [&](std::size_t block) {
+    for (std::size_t island = block == 0 ? 0 : block_end_[block - 1]; island < block_end_[block]; ++island) {
+      island_converged_[island] = solveRestingContacts(contacts, bodies, shared, rangeOf(island), lift_share_) ? 1 : 0;
+    }
+  };
+  if (pool != nullptr && pool->threads() > 1 && block_end_.size() > 1) {
+    pool->parallelFor(block_end_.size(), solveBlock);
+  } else {
+    for (std::size_t block = 0; block < block_end_.size(); ++block) solveBlock(block);
+  }
+}
+
+}  // namespace contact
+}  // namespace rigid_body

@@ -1,0 +1,201 @@
+// Islands of the resting solve (docs/contact.md, "Islands"): bodies are grouped by the contacts between them
+// and never through the environment; each island's solve is its own (its convergence, its results whatever
+// else the lists hold); and a scene with contact steps to the same bits on any number of threads.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <tuple>
+#include <vector>
+
+#include "../../src/contact/solver_islands.hpp"
+#include "rigid_body_sim/references.hpp"
+#include "rigid_body_sim/scene.hpp"
+#include "rigid_body_sim/thread_pool.hpp"
+
+using namespace rigid_body;
+using namespace rigid_body::contact;
+
+namespace {
+
+constexpr double kG = 9.81;
+constexpr double kH = 1e-3;
+const Eigen::Vector3d kDown(0.0, 0.0, -kG);
+const Eigen::Vector3d kBox(0.3, 0.3, 0.2);
+
+TEST(ContactIslands, PointsAreGroupedByTheBodiesTheyLinkNeverThroughTheEnvironment) {
+  // Bodies 0–5, environment objects 6 and 7. Body 0 touches only the environment: an island of its own.
+  const std::vector<std::pair<std::size_t, std::size_t>> links{{3, 6}, {1, 2}, {4, 5}, {0, 7},
+                                                                {2, 6}, {5, 3}, {6, 1}};
+  SolverIslands islands;
+  islands.group(links, 6);
+  ASSERT_EQ(islands.islands(), 3u);
+  // Numbered by their smallest body ({0}, {1, 2}, {3, 4, 5}), each island's points in their given order.
+  EXPECT_EQ(islands.order(), (std::vector<std::size_t>{3, 1, 4, 6, 0, 2, 5}));
+  EXPECT_EQ(islands.islandStart(0), 0u);
+  EXPECT_EQ(islands.islandStart(1), 1u);
+  EXPECT_EQ(islands.islandStart(2), 4u);
+  EXPECT_EQ(islands.islandStart(3), 7u);
+  // The same links in another order make the same islands, numbered the same.
+  const std::vector<std::pair<std::size_t, std::size_t>> reversed(links.rbegin(), links.rend());
+  islands.group(reversed, 6);
+  ASSERT_EQ(islands.islands(), 3u);
+  EXPECT_EQ(islands.order(), (std::vector<std::size_t>{3, 0, 2, 5, 1, 4, 6}));
+}
+
+// A box of mass m at solver index `self` on `below` (the environment or another box under it), its four
+// lower corners touching, everything moving down at one step of gravity's speed.
+void boxOn(std::size_t self, std::size_t below, double m, std::vector<SolverBody>& bodies,
+           std::vector<SolverContact>& contacts) {
+  SolverBody body;
+  body.inverse_mass = 1.0 / m;
+  const MassProperties mass = MassProperties::box(m, kBox);
+  body.inverse_inertia_W = mass.inverseInertia();
+  body.v = Eigen::Vector3d(0.01, -0.02, -kG * kH);
+  body.w = Eigen::Vector3d(0.001, 0.0, 0.002);
+  bodies.push_back(body);
+  for (const double x : {-0.15, 0.15}) {
+    for (const double y : {-0.15, 0.15}) {
+      SolverContact c;
+      c.a = self, c.b = below;
+      c.r_a = Eigen::Vector3d(x, y, -0.1);
+      if (below != kEnvironment) c.r_b = Eigen::Vector3d(x, y, 0.1);
+      c.n = Eigen::Vector3d::UnitZ(), c.t1 = Eigen::Vector3d::UnitX(), c.t2 = Eigen::Vector3d::UnitY();
+      c.separation = -2e-5;
+      c.friction = 0.5;
+      c.sustained = true;
+      contacts.push_back(c);
+    }
+  }
+}
+
+// A 0.1 m ball at solver index `self` on the ground, sliding and sinking.
+void ballOn(std::size_t self, std::vector<SolverBody>& bodies, std::vector<SolverContact>& contacts) {
+  SolverBody body;
+  body.inverse_mass = 1.0 / 0.5;
+  body.inverse_inertia_W = MassProperties::sphere(0.5, 0.1).inverseInertia();
+  body.v = Eigen::Vector3d(0.3, -0.1, -kG * kH);
+  body.w = Eigen::Vector3d(0.0, 1.0, 0.0);
+  bodies.push_back(body);
+  SolverContact c;
+  c.a = self, c.b = kEnvironment;
+  c.r_a = Eigen::Vector3d(0.0, 0.0, -0.1);
+  c.n = Eigen::Vector3d::UnitZ(), c.t1 = Eigen::Vector3d::UnitX(), c.t2 = Eigen::Vector3d::UnitY();
+  c.separation = -2e-5;
+  c.friction = 0.5;
+  c.sustained = true;
+  contacts.push_back(c);
+}
+
+RestingSolveSettings fewSweeps() {
+  RestingSolveSettings settings;
+  settings.options.iterations = 5;
+  settings.options.sweep_budget_contacts = 1;  // 5 sweeps, no more
+  settings.options.dt = kH;
+  settings.move_weight = 0.5 * kH;
+  return settings;
+}
+
+bool sameBits(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::memcmp(a.data(), b.data(), sizeof(double) * 3) == 0;
+}
+
+TEST(ContactIslands, EachIslandConvergesOnItsOwnAndGetsWhatItWouldAlone) {
+  // Island 0: a ball sliding on the ground (object 0, solver body 1; one point, which two sweeps settle);
+  // island 1: a 1 000 kg box (object 2, body 3) on a 1 kg one (object 1, body 2) on the ground, which five
+  // sweeps cannot settle (the impulse crosses the mass ratio a little at each).
+  std::vector<SolverBody> bodies{environmentBody()};
+  std::vector<SolverContact> contacts;
+  ballOn(1, bodies, contacts);
+  boxOn(2, kEnvironment, 1.0, bodies, contacts);
+  boxOn(3, 2, 1000.0, bodies, contacts);
+  std::vector<std::pair<std::size_t, std::size_t>> links;
+  for (const SolverContact& c : contacts) links.emplace_back(c.a - 1, c.b == kEnvironment ? 10 : c.b - 1);
+  SolverIslands islands;
+  islands.group(links, 3);
+  ASSERT_EQ(islands.islands(), 2u);
+  ASSERT_EQ(islands.order(), (std::vector<std::size_t>{0, 1, 2, 3, 4, 5, 6, 7, 8}));
+  const std::vector<SolverBody> bodies_before = bodies;
+  const std::vector<SolverContact> contacts_before = contacts;
+  ThreadPool pool(2);
+  islands.solve(contacts, bodies, {1, 2, 4}, fewSweeps(), &pool);
+  EXPECT_TRUE(islands.converged(0));
+  for (std::size_t k = 1; k < 9; ++k) EXPECT_FALSE(islands.converged(k)) << k;
+
+  // The ball solved in lists of its own, with the same sweep budget, gets the same bits.
+  std::vector<SolverBody> alone_bodies{bodies_before[0], bodies_before[1]};
+  std::vector<SolverContact> alone(contacts_before.begin(), contacts_before.begin() + 1);
+  RestingSolveSettings settings = fewSweeps();
+  settings.options.budget_contacts = contacts.size();
+  std::vector<double> lift(2);
+  EXPECT_TRUE(solveRestingContacts(alone, alone_bodies, settings, SolveRange::all(1, 2), lift));
+  for (Eigen::Vector3d SolverBody::*field :
+       {&SolverBody::dP, &SolverBody::dL, &SolverBody::dx, &SolverBody::dtheta, &SolverBody::v}) {
+    EXPECT_TRUE(sameBits(bodies[1].*field, alone_bodies[1].*field));
+  }
+  EXPECT_EQ(contacts[0].normal_impulse, alone[0].normal_impulse);
+  EXPECT_EQ(contacts[0].friction_impulse, alone[0].friction_impulse);
+  EXPECT_GT(contacts[0].normal_impulse, 0.0);
+  // The environment's entry is left as it was (islands on other threads share it).
+  EXPECT_TRUE(sameBits(bodies[0].v, Eigen::Vector3d::Zero()) && sameBits(bodies[0].dx, Eigen::Vector3d::Zero()));
+}
+
+// Stacks of 1 to 6 boxes and one of 40 (an island of more contacts than a thread's block), a ball dropped
+// onto the gap between two stacks (it joins their islands when it lands), a box thrown along the ground
+// into a stack, and a sphere rolling at the friction limit down a tilted block: contact of every kind.
+Scene mixedScene() {
+  ContactSetup setup;
+  setup.environment = {reference::groundPlane(Eigen::Vector3d::UnitZ(), 0.5)};
+  setup.settings.sleep = false;
+  std::vector<BodyDefinition> bodies;
+  const auto add = [&](const BodyDefinition& body, const CollisionShape& shape) {
+    bodies.push_back(body);
+    setup.bodies.push_back(shape);
+  };
+  const CollisionShape box = reference::collisionShape(ShapeType::kBox, kBox, 0.5, 0.0);
+  const auto boxAt = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& v) {
+    return reference::contactBody(MassProperties::box(1.0, kBox), p, Eigen::Quaterniond::Identity(), v,
+                                  Eigen::Vector3d::Zero(), kDown);
+  };
+  for (int s = 0; s < 6; ++s) {
+    for (int i = 0; i <= s; ++i) add(boxAt(Eigen::Vector3d(0.31 * s, 0.0, 0.1 + 0.2 * i), Eigen::Vector3d::Zero()), box);
+  }
+  for (int i = 0; i < 40; ++i) add(boxAt(Eigen::Vector3d(-2.0, 0.0, 0.1 + 0.2 * i), Eigen::Vector3d::Zero()), box);
+  const CollisionShape ball = reference::collisionShape(ShapeType::kSphere, Eigen::Vector3d(0.1, 0, 0), 0.3, 0.5);
+  add(reference::contactBody(MassProperties::sphere(0.5, 0.1), Eigen::Vector3d(0.465, 0.0, 0.8),
+                             Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0.2, 0), kDown),
+      ball);
+  add(boxAt(Eigen::Vector3d(0.8, -1.5, 0.1), Eigen::Vector3d(0.3, 4.0, 0.0)), box);
+  return Scene(bodies, IntegratorType::kRk4, kH, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+}
+
+TEST(ContactIslands, AContactSceneStepsToTheSameBitsOnAnyNumberOfThreads) {
+  const auto run = [](std::size_t threads) {
+    Scene scene = mixedScene();
+    scene.setThreads(threads, 3);
+    scene.setRecordContacts(true);
+    scene.step(700);
+    return scene;
+  };
+  const Scene reference = run(1);
+  const std::size_t ball = reference.bodyCount() - 2;
+  // The ball landed on the stacks beside it and the thrown box reached the stacks' row (not a scene at rest).
+  ASSERT_LT(reference.state(ball).p_WB.z(), 0.7);
+  ASSERT_GT(reference.state(ball + 1).p_WB.y(), -1.0);
+  for (const std::size_t threads : {2, 3, 4}) {
+    const Scene other = run(threads);
+    for (std::size_t b = 0; b < reference.bodyCount(); ++b) {
+      const State& r = reference.state(b);
+      const State& o = other.state(b);
+      EXPECT_TRUE(sameBits(r.p_WB, o.p_WB) && sameBits(r.P_W, o.P_W) && sameBits(r.L_W, o.L_W) &&
+                  std::memcmp(r.q_WB.coeffs().data(), o.q_WB.coeffs().data(), 4 * sizeof(double)) == 0)
+          << threads << " threads, body " << b;
+      ASSERT_EQ(reference.contacts(b).size(), other.contacts(b).size()) << threads << " threads, body " << b;
+      for (std::size_t c = 0; c < reference.contacts(b).size(); ++c) {
+        EXPECT_EQ(reference.contacts(b)[c].normal_impulse, other.contacts(b)[c].normal_impulse);
+        EXPECT_TRUE(sameBits(reference.contacts(b)[c].friction_impulse_W, other.contacts(b)[c].friction_impulse_W));
+      }
+    }
+  }
+}
+
+}  // namespace
