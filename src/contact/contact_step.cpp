@@ -348,7 +348,7 @@ const ContactStep::WarmPoint* ContactStep::warmStart(SolverContact& c, const Con
   return best;
 }
 
-void ContactStep::solveResting(SceneBodies& bodies, double h) {
+void ContactStep::buildSolverLists(const SceneBodies& bodies) {
   solver_contacts_.clear();
   solver_points_.clear();
   solver_anchors_.clear();
@@ -374,6 +374,10 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
     }
   }
   island_body_start_.push_back(solver_bodies_.size());
+}
+
+void ContactStep::solveResting(SceneBodies& bodies, double h) {
+  buildSolverLists(bodies);
   // A sleeping island's pairs are still touching (not tested while it sleeps): kept for when it wakes.
   kept_touching_.clear();
   if (sleep_.anyAsleep()) {

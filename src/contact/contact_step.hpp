@@ -140,6 +140,8 @@ class ContactStep {
   void startSolverLists();
   std::size_t solverIndex(const SceneBodies& bodies, std::size_t object);
   void addContact(const ContactPoint& point, const SceneBodies& bodies, bool resting);
+  // The admitted points of the step as the solver's lists, island by island.
+  void buildSolverLists(const SceneBodies& bodies);
   void solveResting(SceneBodies& bodies, double h);
   // The solved contacts as next step's warm starts (with their anchors: only where the island's solve did not
   // converge) and, while recording, as reports.
