@@ -1,11 +1,17 @@
 #include "collision_world.hpp"
 
 #include <btBulletCollisionCommon.h>
+#include <BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h>
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+
+#include "convex_hull.hpp"
+#include "face_manifold.hpp"
+#include "shape_features.hpp"
 
 namespace rigid_body {
 namespace contact {
@@ -84,12 +90,25 @@ struct NearDispatcher : btCollisionDispatcher {
     setNearCallback(&NearDispatcher::nearCallback);
   }
   double near_distance = 0.0;
+  /// Each body's bounding sphere as placed: its centre of mass and its outer radius [m]. (Every shape's
+  /// collision margin lies inside it: GJK never sees a shape larger than it is.)
+  std::vector<Eigen::Vector4d> bounding_spheres;
 
   // btCollisionDispatcher::defaultNearCallback, with the result's distance threshold set.
   static void nearCallback(btBroadphasePair& pair, btCollisionDispatcher& dispatcher, const btDispatcherInfo& info) {
     auto* a = static_cast<btCollisionObject*>(pair.m_pProxy0->m_clientObject);
     auto* b = static_cast<btCollisionObject*>(pair.m_pProxy1->m_clientObject);
     if (!dispatcher.needsCollision(a, b)) return;
+    // Two bodies whose bounding spheres are farther apart than the near distance have no point within it:
+    // one subtraction instead of a GJK query. The broad phase pairs boxes fattened for motion (Bullet's
+    // tree margin and velocity prediction), so in a pile most of its pairs are such.
+    auto& near = static_cast<NearDispatcher&>(dispatcher);
+    const auto i = static_cast<std::size_t>(a->getUserIndex()), j = static_cast<std::size_t>(b->getUserIndex());
+    if (i < near.bounding_spheres.size() && j < near.bounding_spheres.size()) {
+      const Eigen::Vector4d& s_i = near.bounding_spheres[i];
+      const Eigen::Vector4d& s_j = near.bounding_spheres[j];
+      if ((s_i.head<3>() - s_j.head<3>()).norm() - s_i[3] - s_j[3] > near.near_distance) return;
+    }
     btCollisionObjectWrapper a_wrap(nullptr, a->getCollisionShape(), a, a->getWorldTransform(), -1, -1);
     btCollisionObjectWrapper b_wrap(nullptr, b->getCollisionShape(), b, b->getWorldTransform(), -1, -1);
     if (!pair.m_algorithm) pair.m_algorithm = dispatcher.findAlgorithm(&a_wrap, &b_wrap, nullptr, BT_CONTACT_POINT_ALGORITHMS);
@@ -100,10 +119,27 @@ struct NearDispatcher : btCollisionDispatcher {
   }
 };
 
+// How much farther out than the one query's point face clipping may put a pair's deepest point [m]: well
+// above EPA's accuracy on a face (and the hull computer's rounding of a hull's shrunken points), far below
+// any shape's size.
+constexpr double kFaceDepthTolerance = 1e-4;
+
+// Box–box (btBoxBoxDetector: a face's points in one pass), sphere–sphere and sphere–box keep Bullet's
+// dedicated algorithms; the other convex pairs get one query and face clipping. (A triangle of an
+// environment mesh keeps the multi-point mode: its pairs are not registered here.)
+bool hasDedicatedAlgorithm(int a, int b) {
+  const auto box_or_sphere = [](int type) { return type == BOX_SHAPE_PROXYTYPE || type == SPHERE_SHAPE_PROXYTYPE; };
+  return box_or_sphere(a) && box_or_sphere(b);
+}
+
 }  // namespace
 
 struct CollisionWorld::Impl {
   btDefaultCollisionConfiguration configuration;
+  // One GJK/EPA query per pair of the shapes whose faces give the points (face_manifold.hpp): Bullet's
+  // convex–convex algorithm with its perturbation turned off.
+  btGjkEpaPenetrationDepthSolver penetration_solver;
+  btConvexConvexAlgorithm::CreateFunc one_query{&penetration_solver};
   NearDispatcher dispatcher{&configuration};
   btDbvtBroadphase broadphase;
   btCollisionWorld world{&dispatcher, &broadphase, &configuration};
@@ -125,12 +161,25 @@ struct CollisionWorld::Impl {
   std::vector<Eigen::Vector3d> body_origins;   // p_WB of each body as last placed
   std::vector<double> body_reach;              // each body's outer radius about its origin [m]
   std::vector<char> asleep;                    // per body: left out of detection (setAsleep)
+  std::vector<HullFaces> hull_faces;           // per body: its hull's faces (kMesh), else empty
+  std::vector<CollisionShape> environment_shapes;  // without their triangles: what face clipping reads
+  SupportFace face_a, face_b;                  // scratch of detect()
 
   Impl() {
-    // A face resting on a face needs several points in one pass (a box on the ground its four corners):
-    // the narrow phase perturbs the orientation to find them (Bullet's multi-point iterations).
+    // A face resting on a face needs several points in one pass. Convex pairs get them by face clipping
+    // after one query (registered below); a shape on a triangle of an environment mesh, and the closest-point
+    // queries of pairDistance, by perturbing the orientation (Bullet's multi-point iterations).
     configuration.setPlaneConvexMultipointIterations(4, 4);
     configuration.setConvexConvexMultipointIterations(4, 4);
+    one_query.m_numPerturbationIterations = 0;
+    one_query.m_minimumPointsPerturbationThreshold = 0;
+    const int convex[] = {BOX_SHAPE_PROXYTYPE, CYLINDER_SHAPE_PROXYTYPE, CAPSULE_SHAPE_PROXYTYPE,
+                          CONVEX_HULL_SHAPE_PROXYTYPE, SPHERE_SHAPE_PROXYTYPE};
+    for (const int first : convex) {
+      for (const int second : convex) {
+        if (!hasDedicatedAlgorithm(first, second)) dispatcher.registerCollisionCreateFunc(first, second, &one_query);
+      }
+    }
     // Objects enter the tree without pairing: the broad phase pairs them all at the first detection, after
     // the start-up check (placementConflict) has refused a scene whose bodies sit inside each other. Paired
     // as they entered, 5 000 bodies at one point made 12.5 million pairs (gigabytes) before any check.
@@ -168,16 +217,11 @@ struct CollisionWorld::Impl {
           return bvh;
         }
         // A moving mesh collides as its convex hull (docs/contact.md): the narrow phases for convex
-        // shapes are exact and fast; a concave body needs a convex decomposition given as the shape.
-        auto hull = std::make_unique<btConvexHullShape>();
+        // shapes are exact and fast; a concave body needs a convex decomposition given as the shape. The
+        // constructor has made shape.mesh the hull's vertices.
         Eigen::Vector3d low = shape.mesh.vertices.front(), high = low;
-        for (const auto& v : shape.mesh.vertices) {
-          hull->addPoint(toBt(v), false);
-          low = low.cwiseMin(v), high = high.cwiseMax(v);
-        }
-        hull->recalcLocalAabb();
-        hull->setMargin(marginFor((high - low).minCoeff()));
-        return hull;
+        for (const auto& v : shape.mesh.vertices) low = low.cwiseMin(v), high = high.cwiseMax(v);
+        return roundedHullShape(shape.mesh.vertices, marginFor((high - low).minCoeff()));
       }
     }
     throw std::invalid_argument("unknown collision shape type");
@@ -223,18 +267,17 @@ CollisionWorld::CollisionWorld(const std::vector<CollisionShape>& environment, c
     : impl_(std::make_unique<Impl>()) {
   impl_->body_count = bodies.size();
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    impl_->add(bodies[i], false, static_cast<int>(i), toBt(body_poses[i]));
-    impl_->body_offsets.push_back(toBt(bodies[i].pose));
     impl_->body_shapes.push_back(bodies[i]);
-    if (bodies[i].type == ShapeType::kMesh) {  // only the hull's vertices can touch a plane
-      auto* hull = static_cast<btConvexHullShape*>(impl_->shapes.back().get());
-      impl_->body_shapes.back().mesh.vertices.clear();
-      impl_->body_shapes.back().mesh.triangles.clear();
-      hull->optimizeConvexHull();
-      for (int v = 0; v < hull->getNumPoints(); ++v) {
-        impl_->body_shapes.back().mesh.vertices.push_back(fromBt(hull->getUnscaledPoints()[v]));
-      }
+    CollisionShape& shape = impl_->body_shapes.back();
+    if (shape.type == ShapeType::kMesh) {  // only the hull's vertices can touch anything
+      shape.mesh.vertices = hullVertices(bodies[i].mesh.vertices);
+      shape.mesh.triangles.clear();
+      impl_->hull_faces.push_back(hullFaces(shape.mesh.vertices));
+    } else {
+      impl_->hull_faces.emplace_back();
     }
+    impl_->add(shape, false, static_cast<int>(i), toBt(body_poses[i]));
+    impl_->body_offsets.push_back(toBt(bodies[i].pose));
   }
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     impl_->shape_poses.push_back(body_poses[i] * bodies[i].pose);
@@ -244,6 +287,8 @@ CollisionWorld::CollisionWorld(const std::vector<CollisionShape>& environment, c
   impl_->asleep.assign(bodies.size(), 0);
   for (std::size_t i = 0; i < environment.size(); ++i) {
     impl_->add(environment[i], true, static_cast<int>(bodies.size() + i), btTransform::getIdentity());
+    impl_->environment_shapes.push_back(environment[i]);
+    impl_->environment_shapes.back().mesh = TriangleMesh();
   }
 }
 
@@ -279,60 +324,6 @@ void CollisionWorld::bounds(std::size_t body, Eigen::Vector3d& low, Eigen::Vecto
   high = fromBt(hi);
 }
 
-namespace {
-
-// The points of a convex shape (at pose X_WS) that can touch the half-space n·x ≤ offset first, each with a
-// feature number that stays the same from step to step: a box's corners, a hull's vertices, a sphere's lowest
-// point, a capsule's two lowest points, a cylinder's lowest rim point of each end and eight points around each
-// rim (a cylinder standing on its end rests on its rim). A rim point within 45° of its end's lowest point is
-// left out where the cylinder is tilted: the lowest point is the contact there, and a material point of the
-// rim beside it would brake a rolling cylinder with friction of its own. Half-space contact is exact this way
-// and gives a face its whole manifold in one pass.
-template <typename Visit>
-void planeFeatures(const CollisionShape& shape, const Eigen::Isometry3d& X_WS, const Eigen::Vector3d& n, Visit visit) {
-  const Eigen::Vector3d& s = shape.size;
-  const Eigen::Vector3d c = X_WS.translation();
-  const Eigen::Vector3d axis = X_WS.linear().col(2);
-  switch (shape.type) {
-    case ShapeType::kBox:
-      for (int i = 0; i < 8; ++i) {
-        visit(i, X_WS * Eigen::Vector3d((i & 1 ? 0.5 : -0.5) * s.x(), (i & 2 ? 0.5 : -0.5) * s.y(),
-                                        (i & 4 ? 0.5 : -0.5) * s.z()));
-      }
-      return;
-    case ShapeType::kSphere:
-      return visit(0, c - s.x() * n);
-    case ShapeType::kCapsule:
-      visit(0, c + 0.5 * s.y() * axis - s.x() * n);
-      return visit(1, c - 0.5 * s.y() * axis - s.x() * n);
-    case ShapeType::kCylinder: {
-      const Eigen::Vector3d u = X_WS.linear().col(0), v = X_WS.linear().col(1);
-      Eigen::Vector3d down = -(n - n.dot(axis) * axis);
-      const bool tilted = down.norm() > 1e-9;
-      if (tilted) down.normalize();
-      constexpr double kCos45 = 0.70710678118654752440;
-      for (int end = 0; end < 2; ++end) {
-        const Eigen::Vector3d centre = c + (end == 0 ? -0.5 : 0.5) * s.y() * axis;
-        if (tilted) visit(9 * end, centre + s.x() * down);
-        for (int k = 0; k < 8; ++k) {
-          const double phi = k * 0.78539816339744830962;
-          const Eigen::Vector3d radial = std::cos(phi) * u + std::sin(phi) * v;
-          if (tilted && radial.dot(down) > kCos45) continue;
-          visit(9 * end + 1 + k, centre + s.x() * radial);
-        }
-      }
-      return;
-    }
-    case ShapeType::kMesh:
-      for (std::size_t i = 0; i < shape.mesh.vertices.size(); ++i) visit(static_cast<int>(i), X_WS * shape.mesh.vertices[i]);
-      return;
-    case ShapeType::kPlane:
-      return;
-  }
-}
-
-}  // namespace
-
 void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distance) {
   points.clear();
   btCollisionDispatcher& dispatcher = impl_->dispatcher;
@@ -340,10 +331,15 @@ void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distan
   // drift from where they were found; warm starting is the contact step's own (by matching points).
   for (int m = 0; m < dispatcher.getNumManifolds(); ++m) dispatcher.getManifoldByIndexInternal(m)->clearManifold();
   impl_->dispatcher.near_distance = std::max(0.0, max_distance);
+  impl_->dispatcher.bounding_spheres.resize(impl_->body_count);
+  for (std::size_t body = 0; body < impl_->body_count; ++body) {
+    impl_->dispatcher.bounding_spheres[body] << impl_->body_origins[body], impl_->body_reach[body];
+  }
   impl_->world.performDiscreteCollisionDetection();
   impl_->broadphase.m_deferedcollide = false;  // paired once as a whole; from now on as objects move
   for (int m = 0; m < dispatcher.getNumManifolds(); ++m) {
     btPersistentManifold* manifold = dispatcher.getManifoldByIndexInternal(m);
+    if (addFacePoints(*manifold, max_distance, points)) continue;
     const std::size_t first = points.size();
     for (int c = 0; c < manifold->getNumContacts(); ++c) {
       const btManifoldPoint& p = manifold->getContactPoint(c);
@@ -369,6 +365,49 @@ void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distan
       planeContacts(body, plane.object, max_distance, points);
     }
   }
+}
+
+const CollisionShape* CollisionWorld::facedShape(std::size_t object, const HullFaces** hull,
+                                                 const Eigen::Isometry3d** X_WS) const {
+  const bool body = isBody(object);
+  const CollisionShape& shape = body ? impl_->body_shapes[object] : impl_->environment_shapes[object - bodyCount()];
+  const bool faced = shape.type == ShapeType::kBox || shape.type == ShapeType::kCylinder ||
+                     shape.type == ShapeType::kCapsule || (shape.type == ShapeType::kMesh && body);
+  if (!faced) return nullptr;
+  *hull = shape.type == ShapeType::kMesh ? &impl_->hull_faces[object] : nullptr;
+  *X_WS = body ? &impl_->shape_poses[object] : &shape.pose;
+  return &shape;
+}
+
+bool CollisionWorld::addFacePoints(const btPersistentManifold& manifold, double max_distance,
+                                   std::vector<ContactPoint>& points) {
+  const auto a = static_cast<std::size_t>(manifold.getBody0()->getUserIndex());
+  const auto b = static_cast<std::size_t>(manifold.getBody1()->getUserIndex());
+  const HullFaces *hull_a = nullptr, *hull_b = nullptr;
+  const Eigen::Isometry3d *X_WA = nullptr, *X_WB = nullptr;
+  const CollisionShape* shape_a = facedShape(a, &hull_a, &X_WA);
+  const CollisionShape* shape_b = facedShape(b, &hull_b, &X_WB);
+  if (shape_a == nullptr || shape_b == nullptr) return false;
+  if (shape_a->type == ShapeType::kBox && shape_b->type == ShapeType::kBox) return false;  // btBoxBoxDetector's
+  // The one query's point (the deepest, should the manifold hold more) gives the normal.
+  int deepest = -1;
+  for (int c = 0; c < manifold.getNumContacts(); ++c) {
+    if (deepest < 0 || manifold.getContactPoint(c).getDistance() < manifold.getContactPoint(deepest).getDistance()) deepest = c;
+  }
+  if (deepest < 0 || manifold.getContactPoint(deepest).getDistance() > max_distance) return false;
+  const ContactPoint query = pointFrom(manifold.getContactPoint(deepest), manifold.getBody0(), manifold.getBody1());
+  supportingFace(*shape_a, hull_a, *X_WA, -query.normal, impl_->face_a);
+  supportingFace(*shape_b, hull_b, *X_WB, query.normal, impl_->face_b);
+  const std::size_t first = points.size();
+  if (!clipFaces(impl_->face_a, impl_->face_b, query.normal, max_distance, query, points)) return false;
+  // The clipped points lie on the exact surfaces, the query's on surfaces whose edges and corners are
+  // rounded inward by the margins: the deepest clipped point can lie no farther out than the query's.
+  // Farther out, the faces do not hold the contact (a corner of the pair the clipping missed).
+  double clipped = max_distance;
+  for (std::size_t i = first; i < points.size(); ++i) clipped = std::min(clipped, points[i].distance);
+  if (clipped <= query.distance + kFaceDepthTolerance) return true;
+  points.resize(first);
+  return false;
 }
 
 double CollisionWorld::planeContacts(std::size_t body, std::size_t plane_object, double max_distance,

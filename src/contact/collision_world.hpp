@@ -1,7 +1,8 @@
 // The collision library behind the contact step: Bullet's collision module (double precision), used for what
-// it is made for: a dynamic AABB tree broad phase, narrow phases per shape pair with persistent contact
-// manifolds (up to four points a pair, kept from step to step), pair distances and box queries.
-// Nothing of Bullet leaves this file pair; the rest of the core sees Eigen types.
+// it is made for: a dynamic AABB tree broad phase, narrow phases per shape pair (one GJK/EPA query whose
+// normal face clipping turns into the pair's points, face_manifold.hpp; Bullet's own box–box and sphere
+// algorithms), pair distances and box queries. Nothing of Bullet leaves this file pair (and convex_hull.cpp);
+// the rest of the core sees Eigen types.
 #pragma once
 
 #include <Eigen/Core>
@@ -12,8 +13,12 @@
 
 #include "rigid_body_sim/collision_shape.hpp"
 
+class btPersistentManifold;
+
 namespace rigid_body {
 namespace contact {
+
+struct HullFaces;
 
 /// One point of contact between two collision objects. Objects 0 … bodies−1 are the colliding bodies (in
 /// the order given), the rest the environment shapes.
@@ -76,6 +81,12 @@ class CollisionWorld {
  private:
   double planeContacts(std::size_t body, std::size_t plane_object, double max_distance,
                        std::vector<ContactPoint>& points) const;
+  /// An object whose faces give its contact points (a box, cylinder, capsule or a body's hull), with its
+  /// hull's faces (kMesh) and its pose; null for the others (spheres, planes, triangle meshes).
+  const CollisionShape* facedShape(std::size_t object, const HullFaces** hull, const Eigen::Isometry3d** X_WS) const;
+  /// A pair's points by face clipping from the normal of its manifold's one query (face_manifold.hpp);
+  /// false, adding nothing, where the pair's shapes or faces do not make them.
+  bool addFacePoints(const btPersistentManifold& manifold, double max_distance, std::vector<ContactPoint>& points);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -1,0 +1,145 @@
+#include "face_manifold.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <utility>
+
+namespace rigid_body {
+namespace contact {
+
+namespace {
+
+// Two segments (a capsule's or a cylinder's side on another's) make a line contact only where they are
+// parallel: within the face angle, |d_a × d_b| ≤ sin 10°.
+constexpr double kFaceAngleSine = 0.17364817766693034885;
+
+// A clipped incident point p made into a contact point: its partner is p moved along n onto the reference
+// face's plane (through q0, outward normal m), and their distance along n is the pair's there.
+void addClippedPoint(const Eigen::Vector3d& p, const Eigen::Vector3d& q0, const Eigen::Vector3d& m, const Eigen::Vector3d& n,
+                     bool reference_is_b, double max_distance, const ContactPoint& pair, std::vector<ContactPoint>& points) {
+  const double t = (p - q0).dot(m) / n.dot(m);  // p − t n lies on the reference plane
+  ContactPoint point = pair;
+  point.normal = n;
+  point.feature = -1;
+  if (reference_is_b) {
+    point.on_a = p, point.on_b = p - t * n, point.distance = t;
+  } else {
+    point.on_b = p, point.on_a = p - t * n, point.distance = -t;
+  }
+  if (point.distance <= max_distance) points.push_back(point);
+}
+
+// Sutherland–Hodgman: keeps the part of `polygon` (closed) or of a segment (`closed` false, two points)
+// with s·x ≤ offset.
+void clipAgainstPlane(const std::vector<Eigen::Vector3d>& in, std::vector<Eigen::Vector3d>& out, const Eigen::Vector3d& s,
+                      double offset, bool closed) {
+  out.clear();
+  const std::size_t count = in.size();
+  if (count == 0) return;
+  const std::size_t edges = closed ? count : count - 1;
+  if (!closed && s.dot(in[0]) <= offset) out.push_back(in[0]);
+  for (std::size_t e = 0; e < edges; ++e) {
+    const Eigen::Vector3d& from = in[e];
+    const Eigen::Vector3d& to = in[(e + 1) % count];
+    const double d_from = s.dot(from) - offset, d_to = s.dot(to) - offset;
+    if ((d_from <= 0.0) != (d_to <= 0.0)) out.push_back(from + (d_from / (d_from - d_to)) * (to - from));
+    if (d_to <= 0.0) out.push_back(to);
+  }
+}
+
+}  // namespace
+
+bool clipFaces(const SupportFace& face_a, const SupportFace& face_b, const Eigen::Vector3d& n, double max_distance,
+               const ContactPoint& pair, std::vector<ContactPoint>& points) {
+  const std::size_t count_a = face_a.vertices.size(), count_b = face_b.vertices.size();
+  if (count_a < 2 || count_b < 2) return false;
+  // The reference: the polygon nearer to normal to n (a's face looks along −n, b's along n).
+  const double along_a = count_a >= 3 ? -face_a.normal.dot(n) : -1.0;
+  const double along_b = count_b >= 3 ? face_b.normal.dot(n) : -1.0;
+  bool reference_is_b = true;
+  Eigen::Vector3d m = n;  // the reference plane's outward normal
+  if (count_a >= 3 || count_b >= 3) {
+    reference_is_b = along_b >= along_a;
+    if (std::max(along_a, along_b) < kFaceAngleCosine) return false;
+    m = reference_is_b ? face_b.normal : face_a.normal;
+  } else {
+    const Eigen::Vector3d d_a = (face_a.vertices[1] - face_a.vertices[0]).normalized();
+    const Eigen::Vector3d d_b = (face_b.vertices[1] - face_b.vertices[0]).normalized();
+    if (!(d_a.cross(d_b).norm() <= kFaceAngleSine)) return false;
+  }
+  const SupportFace& reference = reference_is_b ? face_b : face_a;
+  const SupportFace& incident = reference_is_b ? face_a : face_b;
+  thread_local std::vector<Eigen::Vector3d> clipped, scratch;
+  clipped = incident.vertices;
+  const bool closed = incident.vertices.size() >= 3;
+  const std::vector<Eigen::Vector3d>& r = reference.vertices;
+  if (r.size() >= 3) {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d& v : r) centroid += v;
+    centroid /= static_cast<double>(r.size());
+    for (std::size_t e = 0; e < r.size() && !clipped.empty(); ++e) {
+      const Eigen::Vector3d& v0 = r[e];
+      Eigen::Vector3d side = (r[(e + 1) % r.size()] - v0).cross(m);
+      if (side.dot(centroid - v0) > 0.0) side = -side;  // outward from the face's interior
+      clipAgainstPlane(clipped, scratch, side, side.dot(v0), closed);
+      std::swap(clipped, scratch);
+    }
+  } else {  // a segment: the slab between the planes across it at its ends
+    const Eigen::Vector3d along = r[1] - r[0];
+    clipAgainstPlane(clipped, scratch, -along, -along.dot(r[0]), closed);
+    clipAgainstPlane(scratch, clipped, along, along.dot(r[1]), closed);
+  }
+  const std::size_t first = points.size();
+  for (const Eigen::Vector3d& p : clipped) addClippedPoint(p, r[0], m, n, reference_is_b, max_distance, pair, points);
+  if (points.size() == first) return false;
+  keepFourPoints(points, first);
+  return true;
+}
+
+void keepFourPoints(std::vector<ContactPoint>& points, std::size_t first) {
+  const std::size_t count = points.size() - first;
+  if (count <= 4) return;
+  auto at = [&](std::size_t i) -> const Eigen::Vector3d& { return points[first + i].on_b; };
+  std::array<std::size_t, 4> kept{};
+  // The deepest.
+  kept[0] = 0;
+  for (std::size_t i = 1; i < count; ++i) {
+    if (points[first + i].distance < points[first + kept[0]].distance) kept[0] = i;
+  }
+  // The farthest from it.
+  kept[1] = kept[0];
+  for (std::size_t i = 0; i < count; ++i) {
+    if ((at(i) - at(kept[0])).squaredNorm() > (at(kept[1]) - at(kept[0])).squaredNorm()) kept[1] = i;
+  }
+  // The largest triangle with those two.
+  const Eigen::Vector3d edge = at(kept[1]) - at(kept[0]);
+  kept[2] = kept[0];
+  double largest = 0.0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double area = edge.cross(at(i) - at(kept[0])).norm();
+    if (area > largest) largest = area, kept[2] = i;
+  }
+  std::size_t kept_count = largest > 0.0 ? 3 : 2;
+  // The most area added beyond the triangle: outside one of its edges, the triangle that edge makes with it.
+  if (kept_count == 3) {
+    const Eigen::Vector3d normal = edge.cross(at(kept[2]) - at(kept[0])).normalized();
+    double gain = 0.0;
+    for (std::size_t i = 0; i < count; ++i) {
+      for (int e = 0; e < 3; ++e) {
+        const Eigen::Vector3d& from = at(kept[e]);
+        const Eigen::Vector3d& to = at(kept[(e + 1) % 3]);
+        const double outside = -(to - from).cross(at(i) - from).dot(normal);
+        if (outside > gain) gain = outside, kept[3] = i;
+      }
+    }
+    if (gain > 0.0) kept_count = 4;
+  }
+  std::array<ContactPoint, 4> chosen;
+  for (std::size_t k = 0; k < kept_count; ++k) chosen[k] = points[first + kept[k]];
+  points.resize(first);
+  for (std::size_t k = 0; k < kept_count; ++k) points.push_back(chosen[k]);
+}
+
+}  // namespace contact
+}  // namespace rigid_body
