@@ -144,14 +144,14 @@ UpdateResult World::update(Nanoseconds now) {
   target = std::min(target, last_step_);
   std::int64_t budget = updateBudget();
   // The wall-time budget of a tick (not of our own clock's: that never drops steps).
-  const Nanoseconds deadline = settings_.owns_clock ? kNoDeadline : deadlineAfter(settings_.max_tick_seconds);
+  ChunkTimer timer(*this, settings_.owns_clock ? std::numeric_limits<double>::infinity() : settings_.max_tick_seconds);
   for (const Command& command : pending_) {
     const std::int64_t at = std::max(clock_, std::min(stepAt(command.arrival), std::max(clock_, target)));
-    advanceClockTo(at, budget, false, result, deadline);
+    advanceClockTo(at, budget, false, result, &timer);
     apply(command, &result);
   }
   pending_.clear();
-  advanceClockTo(target, budget, false, result, deadline);
+  advanceClockTo(target, budget, false, result, &timer);
   result.advanced = result.advanced || clock_ > before;
   result.end_of_time = end_of_time_ = clock_ >= last_step_;
   counters_.last_substeps = result.steps;
@@ -160,7 +160,8 @@ UpdateResult World::update(Nanoseconds now) {
 }
 
 void World::advanceClockTo(std::int64_t target, std::int64_t& budget, bool integrate_paused, UpdateResult& result,
-                           Nanoseconds deadline) {
+                           ChunkTimer* timer) {
+  const bool limited = timer != nullptr && timer->limited();
   while (clock_ < target) {
     const std::int64_t next = std::min(target, nextEvent());
     const std::int64_t due = next - clock_;
@@ -169,7 +170,7 @@ void World::advanceClockTo(std::int64_t target, std::int64_t& budget, bool integ
       clock_ = next;                     // someone else's clock runs; the states hold
     } else {
       const std::int64_t steps = std::min(due, budget);
-      const std::int64_t chunk = deadline == kNoDeadline ? steps : chunkSteps();
+      const std::int64_t chunk = limited ? chunkSteps() : steps;
       std::int64_t done = 0;
       bool out_of_time = false;
       while (done < steps && !out_of_time) {
@@ -178,7 +179,7 @@ void World::advanceClockTo(std::int64_t target, std::int64_t& budget, bool integ
         result.steps += stepped.steps;
         result.diverged = result.diverged || stepped.diverged;
         done += n;
-        out_of_time = deadline != kNoDeadline && wallClock() >= deadline;
+        out_of_time = limited && timer->nextWouldOverrun();
       }
       budget = out_of_time ? 0 : budget - done;  // out of wall time: the rest of this update passes without motion
       result.dropped += due - done;
@@ -458,8 +459,8 @@ CommandReply World::step(std::int64_t steps, Nanoseconds now) {
   }
   // In chunks, the wall clock read between them (as advanceClockTo does for a tick): a request stops at its
   // time budget, where it got to.
-  const Nanoseconds deadline = deadlineAfter(settings_.max_request_seconds);
-  const std::int64_t chunk = deadline == kNoDeadline ? steps : chunkSteps();
+  ChunkTimer timer(*this, settings_.max_request_seconds);
+  const std::int64_t chunk = timer.limited() ? chunkSteps() : steps;
   for (std::int64_t done = 0; done < steps;) {
     const std::int64_t n = std::min(chunk, steps - done);
     if (settings_.owns_clock) {
@@ -470,7 +471,7 @@ CommandReply World::step(std::int64_t steps, Nanoseconds now) {
       scene_.step(n);  // the clock is someone else's: it stays where it is
     }
     done += n;
-    if (done < steps && deadline != kNoDeadline && wallClock() >= deadline) {
+    if (done < steps && timer.nextWouldOverrun()) {
       return {false, "stopped after " + std::to_string(done) + " of " + std::to_string(steps) +
                          " steps: a step request takes at most " + formatNumber(settings_.max_request_seconds, 6) +
                          " s of wall time (max_request_seconds); call step again for the rest"};
@@ -490,8 +491,19 @@ std::int64_t World::chunkSteps() const {
   return std::max<std::int64_t>(1, kRequestChunkBodySteps / weighted);
 }
 
-Nanoseconds World::deadlineAfter(double seconds) const {
-  return std::isfinite(seconds) ? saturatingAdd(wallClock(), toNanoseconds(seconds)) : kNoDeadline;
+World::ChunkTimer::ChunkTimer(const World& world, double budget_seconds)
+    : world_(world), deadline_(kNoDeadline), last_(0) {
+  if (!std::isfinite(budget_seconds)) return;
+  last_ = world.wallClock();
+  deadline_ = saturatingAdd(last_, toNanoseconds(budget_seconds));
+}
+
+bool World::ChunkTimer::nextWouldOverrun() {
+  if (!limited()) return false;
+  const Nanoseconds now = world_.wallClock();
+  const Nanoseconds took = std::max<Nanoseconds>(0, now - last_);
+  last_ = now;
+  return now >= deadline_ || took > deadline_ - now;
 }
 
 Nanoseconds World::wallClock() const {

@@ -53,7 +53,7 @@ const std::vector<ParameterSpec>& sceneParameterSchema() {
        "steps x bodies one tick may integrate", RBS_FIELD(max_body_steps_per_tick)},
       {"max_body_steps_per_request", T::kInteger, 2000000, closed(1, kIntMax), "body-steps",
        "steps x bodies one step request may ask for", RBS_FIELD(max_body_steps_per_request)},
-      {"max_tick_seconds", T::kNumber, 0.25, leftOpen(0.0, 3600.0), "s", "wall time one tick may integrate for",
+      {"max_tick_seconds", T::kNumber, 0.2, leftOpen(0.0, 3600.0), "s", "wall time one tick may integrate for",
        RBS_FIELD(max_tick_seconds)},
       {"max_request_seconds", T::kNumber, 1.0, leftOpen(0.0, 3600.0), "s", "wall time one step request may take",
        RBS_FIELD(max_request_seconds)},

@@ -253,8 +253,8 @@ TEST(World, StepRequestsAreBoundedInBodySteps) {
 
 TEST(World, AStepRequestStopsAtItsWallTimeBudgetWhereItGotToAndTheRestContinuesTheSameRun) {
   // A wall clock that advances 0.1 s at every reading, against a budget of 0.25 s: the request stops after
-  // the third chunk (readings at 0.1, 0.2, 0.3 s after its start), each chunk kRequestChunkBodySteps steps
-  // of this one body.
+  // the second chunk (readings at 0.1 and 0.2 s after its start; a third, taking 0.1 s as each did, would
+  // end 0.3 s after it, past the budget), each chunk kRequestChunkBodySteps steps of this one body.
   for (const bool owns_clock : {false, true}) {
     Nanoseconds wall = 0;
     WorldSettings settings = settingsWith();
@@ -267,7 +267,7 @@ TEST(World, AStepRequestStopsAtItsWallTimeBudgetWhereItGotToAndTheRestContinuesT
     const std::int64_t steps = 10 * kRequestChunkBodySteps + 7;
     const CommandReply stopped = budgeted.step(steps, budgeted.stamp());
     EXPECT_FALSE(stopped.accepted);
-    const std::int64_t done = 3 * kRequestChunkBodySteps;
+    const std::int64_t done = 2 * kRequestChunkBodySteps;
     EXPECT_NE(stopped.message.find("stopped after " + std::to_string(done) + " of " + std::to_string(steps) + " steps"),
               std::string::npos)
         << stopped.message;
@@ -297,8 +297,10 @@ TEST(World, AStepRequestStopsAtItsWallTimeBudgetWhereItGotToAndTheRestContinuesT
 
 TEST(World, AStepRequestOnASceneWithManyCollidersReadsTheClockAfterEveryStep) {
   // 16 boxes resting apart on the ground: 16 × kColliderChunkWeight body-steps a step, so a chunk is one
-  // step and a request against a 0.25 s budget, with a clock that advances 0.1 s a reading, stops after the
-  // third step (a chunk of kMinChunkSteps would run 16 steps between readings: over a second for a pile).
+  // step and a request against a 0.25 s budget, with a clock that advances 0.1 s a reading (the update
+  // before the request reads 0.1 s, the request's budget starts at 0.2 s and ends at 0.45 s), stops after
+  // the second step: the third would take 0.1 s as the second did and end at 0.5 s, past the budget (a chunk
+  // of kMinChunkSteps would run 16 steps between readings: over a second for a pile).
   Nanoseconds wall = 0;
   WorldSettings settings = settingsWith();
   settings.start_paused = true;
@@ -323,14 +325,15 @@ TEST(World, AStepRequestOnASceneWithManyCollidersReadsTheClockAfterEveryStep) {
   world.start(0);
   const CommandReply stopped = world.step(100, world.stamp());
   EXPECT_FALSE(stopped.accepted);
-  EXPECT_NE(stopped.message.find("stopped after 3 of 100 steps"), std::string::npos) << stopped.message;
-  EXPECT_EQ(world.scene().integratedSteps(0), 3);
+  EXPECT_NE(stopped.message.find("stopped after 2 of 100 steps"), std::string::npos) << stopped.message;
+  EXPECT_EQ(world.scene().integratedSteps(0), 2);
 }
 
 TEST(World, AnUpdatePastItsWallTimeBudgetDropsTheRestOfItsStepsAndTheNextOneGoesOn) {
   // A wall clock that advances 0.1 s at every reading, against an update budget of 0.25 s (deadline 0.35 s
-  // after the first reading at 0.1 s): an update 5 s late integrates three chunks of kRequestChunkBodySteps
-  // (readings at 0.2, 0.3, 0.4 s) and lets the rest pass without motion, counted as dropped.
+  // after the first reading at 0.1 s): an update 5 s late integrates two chunks of kRequestChunkBodySteps
+  // (readings at 0.2 and 0.3 s; a third, taking 0.1 s as each did, would end at 0.4 s, past the deadline)
+  // and lets the rest pass without motion, counted as dropped.
   Nanoseconds wall = 0;
   WorldSettings settings = settingsWith(100000);  // the catch-up cap out of the way
   settings.max_tick_seconds = 0.25;
@@ -338,7 +341,7 @@ TEST(World, AnUpdatePastItsWallTimeBudgetDropsTheRestOfItsStepsAndTheNextOneGoes
   World world = makeWorld(settings);
   world.setWrench(0, worldForce(1.0), 0);
   const UpdateResult late = world.update(seconds(5.0));
-  const std::int64_t done = 3 * kRequestChunkBodySteps;
+  const std::int64_t done = 2 * kRequestChunkBodySteps;
   EXPECT_EQ(late.steps, done);
   EXPECT_EQ(late.dropped, 5000 - done);
   EXPECT_EQ(world.counters().dropped_steps, static_cast<std::uint64_t>(5000 - done));

@@ -35,7 +35,7 @@ TEST(Parameters, DefaultsAreTheDefaultScene) {
   EXPECT_TRUE(std::isinf(config.wrench_limits.max_force));  // no limit unless set
   EXPECT_EQ(config.max_energy_growth, 2.0);
   EXPECT_EQ(config.max_request_seconds, 1.0);  // a step request stops after a second of wall time
-  EXPECT_EQ(config.max_tick_seconds, 0.25);
+  EXPECT_EQ(config.max_tick_seconds, 0.2);
 }
 
 TEST(Parameters, ReadsEveryKey) {

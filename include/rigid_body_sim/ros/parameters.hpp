@@ -155,7 +155,7 @@ struct NodeConfig {
   std::int64_t max_body_steps_per_tick = 2000000;     ///< the same cap in body-steps (steps × bodies) per tick
   std::int64_t max_body_steps_per_request = 2000000;  ///< the most body-steps one step request may ask for
   double max_request_seconds = 1.0;  ///< [s] the wall time one step request may take; it stops there and says so
-  double max_tick_seconds = 0.25;    ///< [s] the wall time one tick may integrate for; the rest is dropped, counted
+  double max_tick_seconds = 0.2;     ///< [s] the wall time one tick may integrate for; the rest is dropped, counted
   std::size_t threads = 0;  ///< the scene's stepping threads (0: as many as cores; used from 65 bodies on)
   PublishConfig publish;
   bool lockstep = false;          ///< the node owns simulated time and publishes /clock
