@@ -1,7 +1,7 @@
 // Cost of contact per body and step (Google Benchmark): N boxes resting on the ground apart from each other,
 // N boxes in stacks of 10 (every box touches two others or the ground), and N spheres in the air far apart
-// (the broad phase alone: no pair overlaps), all awake (sleeping off); the stacks on two threads; and the
-// stacks once asleep. Not a
+// (the broad phase alone: no pair overlaps), all awake (sleeping off); the stacks on two threads; the
+// stacks once asleep; and one box among 2 000 half-spaces. Not a
 // test: run by scripts/benchmark.sh; numbers in docs/performance.md. One iteration is 10 steps of 1 ms (the
 // node's default tick). Scenes without colliders are scene_benchmark's: their cost with contact compiled in is
 // measured there.
@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "rigid_body_sim/kinematics.hpp"
@@ -118,6 +119,26 @@ void asleep(benchmark::State& bench, IntegratorType type) {
   Scene scene = boxes(static_cast<std::size_t>(bench.range(0)), 10, type, true);
   run(bench, scene);
 }
+// One box resting on the ground among range − 1 more half-spaces, walls 50 m away all around: what the
+// half-spaces cost a body that touches only one of them (each is culled by the body's bounding sphere).
+void manyPlanes(benchmark::State& bench) {
+  ContactSetup setup;
+  setup.settings.sleep = false;
+  setup.environment = {ground()};
+  const auto planes = static_cast<std::size_t>(bench.range(0));
+  for (std::size_t k = 1; k < planes; ++k) {
+    const double angle = 6.283185307179586 * static_cast<double>(k) / static_cast<double>(planes);
+    CollisionShape wall = ground();
+    wall.name = "wall_" + std::to_string(k);
+    wall.normal = Eigen::Vector3d(std::cos(angle), std::sin(angle), 0.0);
+    wall.offset = -50.0;  // solid beyond 50 m, on the far side
+    setup.environment.push_back(wall);
+  }
+  setup.bodies = {boxShape()};
+  Scene scene({bodyAt(MassProperties::box(1.0, kBox), Eigen::Vector3d(0.0, 0.0, 0.1), Eigen::Vector3d(0.0, 0.0, -9.81))},
+              IntegratorType::kRk4, 1e-3, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+  run(bench, scene);
+}
 void broadPhaseOnly(benchmark::State& bench) {
   Scene scene = apart(static_cast<std::size_t>(bench.range(0)), IntegratorType::kSemiImplicitEuler);
   run(bench, scene);
@@ -134,5 +155,6 @@ BENCHMARK_CAPTURE(stacks, semi_implicit_euler, IntegratorType::kSemiImplicitEule
 BENCHMARK_CAPTURE(stacks2Threads, rk4, IntegratorType::kRk4)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(asleep, rk4, IntegratorType::kRk4)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(broadPhaseOnly)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(manyPlanes)->Arg(1)->Arg(2000)->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_MAIN();

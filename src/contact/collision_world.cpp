@@ -90,8 +90,8 @@ struct NearDispatcher : btCollisionDispatcher {
     setNearCallback(&NearDispatcher::nearCallback);
   }
   double near_distance = 0.0;
-  /// Each body's bounding sphere as placed: its centre of mass and its outer radius [m]. (Every shape's
-  /// collision margin lies inside it: GJK never sees a shape larger than it is.)
+  /// Each body's bounding sphere as placed: its centre of mass and its outer radius [m]. (A box's or
+  /// cylinder's collision margin lies inside it, a hull has none: GJK never sees a shape larger than it is.)
   std::vector<Eigen::Vector4d> bounding_spheres;
 
   // btCollisionDispatcher::defaultNearCallback, with the result's distance threshold set.
@@ -120,8 +120,7 @@ struct NearDispatcher : btCollisionDispatcher {
 };
 
 // How much farther out than the one query's point face clipping may put a pair's deepest point [m]: well
-// above EPA's accuracy on a face (and the hull computer's rounding of a hull's shrunken points), far below
-// any shape's size.
+// above EPA's accuracy on a face, far below any shape's size.
 constexpr double kFaceDepthTolerance = 1e-4;
 
 // Box–box (btBoxBoxDetector: a face's points in one pass), sphere–sphere and sphere–box keep Bullet's
@@ -219,9 +218,7 @@ struct CollisionWorld::Impl {
         // A moving mesh collides as its convex hull (docs/contact.md): the narrow phases for convex
         // shapes are exact and fast; a concave body needs a convex decomposition given as the shape. The
         // constructor has made shape.mesh the hull's vertices.
-        Eigen::Vector3d low = shape.mesh.vertices.front(), high = low;
-        for (const auto& v : shape.mesh.vertices) low = low.cwiseMin(v), high = high.cwiseMax(v);
-        return roundedHullShape(shape.mesh.vertices, marginFor((high - low).minCoeff()));
+        return hullShape(shape.mesh.vertices);
       }
     }
     throw std::invalid_argument("unknown collision shape type");
@@ -400,8 +397,9 @@ bool CollisionWorld::addFacePoints(const btPersistentManifold& manifold, double 
   supportingFace(*shape_b, hull_b, *X_WB, query.normal, impl_->face_b);
   const std::size_t first = points.size();
   if (!clipFaces(impl_->face_a, impl_->face_b, query.normal, max_distance, query, points)) return false;
-  // The clipped points lie on the exact surfaces, the query's on surfaces whose edges and corners are
-  // rounded inward by the margins: the deepest clipped point can lie no farther out than the query's.
+  // The clipped points lie on the exact surfaces, the query's on surfaces whose edges and corners may be
+  // rounded inward by a margin (a box's, a cylinder's): the deepest clipped point can lie no farther out
+  // than the query's.
   // Farther out, the faces do not hold the contact (a corner of the pair the clipping missed).
   double clipped = max_distance;
   for (std::size_t i = first; i < points.size(); ++i) clipped = std::min(clipped, points[i].distance);

@@ -78,18 +78,10 @@ HullFaces hullFaces(const std::vector<Eigen::Vector3d>& vertices) {
   return faces;
 }
 
-std::unique_ptr<btConvexHullShape> roundedHullShape(const std::vector<Eigen::Vector3d>& vertices, double margin) {
-  btConvexHullComputer computer;
-  const double shrunk = computer.compute(vertices.front().data(), static_cast<int>(sizeof(Eigen::Vector3d)),
-                                         static_cast<int>(vertices.size()), margin, 0.25);
+std::unique_ptr<btConvexHullShape> hullShape(const std::vector<Eigen::Vector3d>& vertices) {
   auto hull = std::make_unique<btConvexHullShape>();
-  if (shrunk > 0.0) {
-    for (int v = 0; v < computer.vertices.size(); ++v) hull->addPoint(computer.vertices[v], false);
-    hull->setMargin(shrunk);
-  } else {  // nothing to shrink: the hull itself, sharp
-    for (const Eigen::Vector3d& p : vertices) hull->addPoint(btVector3(p.x(), p.y(), p.z()), false);
-    hull->setMargin(0.0);
-  }
+  for (const Eigen::Vector3d& p : vertices) hull->addPoint(btVector3(p.x(), p.y(), p.z()), false);
+  hull->setMargin(0.0);
   hull->recalcLocalAabb();
   return hull;
 }

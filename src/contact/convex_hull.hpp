@@ -1,7 +1,6 @@
 // A moving mesh collides as its convex hull (docs/contact.md, "Shapes"): the hull's points, taken back to
-// the mesh's own vertices, its faces for face clipping, and Bullet's shape for it, rounded inside the hull
-// as Bullet's boxes and cylinders are (a margin that GJK adds back onto a shrunken hull), so that GJK, the
-// half-space features and the faces all see the mesh's own surface.
+// the mesh's own vertices, its faces for face clipping, and Bullet's shape for it, sharp (no collision
+// margin), so that GJK, the half-space features and the faces all see the mesh's own surface.
 #pragma once
 
 #include <Eigen/Core>
@@ -24,10 +23,10 @@ std::vector<Eigen::Vector3d> hullVertices(const std::vector<Eigen::Vector3d>& po
 /// face's corners among `vertices` in order around it, its normal outward.
 HullFaces hullFaces(const std::vector<Eigen::Vector3d>& vertices);
 
-/// Bullet's shape for the hull of `vertices`: the hull shrunk by `margin` (at most a quarter of its inner
-/// radius) with that margin, so that its faces lie where the hull's do and its edges and corners are
-/// rounded inside it.
-std::unique_ptr<btConvexHullShape> roundedHullShape(const std::vector<Eigen::Vector3d>& vertices, double margin);
+/// Bullet's shape for the hull of `vertices`, with no margin. (Bullet's default margin puts the surface GJK
+/// sees a margin outside the hull. Shrunk by the margin instead, the hull keeps its faces but its edges are
+/// rounded off: a 0.1 m cube rocking on an edge sank 1.1 mm into a box before GJK saw it touch.)
+std::unique_ptr<btConvexHullShape> hullShape(const std::vector<Eigen::Vector3d>& vertices);
 
 }  // namespace contact
 }  // namespace rigid_body

@@ -120,7 +120,7 @@ void keepFourPoints(std::vector<ContactPoint>& points, std::size_t first) {
     const double area = edge.cross(at(i) - at(kept[0])).norm();
     if (area > largest) largest = area, kept[2] = i;
   }
-  std::size_t kept_count = largest > 0.0 ? 3 : 2;
+  std::size_t kept_count = largest > 0.0 ? 3 : (kept[1] != kept[0] ? 2 : 1);  // 1: the points coincide
   // The most area added beyond the triangle: outside one of its edges, the triangle that edge makes with it.
   if (kept_count == 3) {
     const Eigen::Vector3d normal = edge.cross(at(kept[2]) - at(kept[0])).normalized();

@@ -179,6 +179,23 @@ TEST(FaceManifolds, AHullOnATableCornerTouchesAtCornersOfTheOverlap) {
   }
 }
 
+// A cube hull rocking on an edge on the table (tilted 20° about its x axis, turned 30° about the vertical):
+// the table's face lies along the normal and the cube's lowest face, 20° off it, is clipped to it, so the
+// pair touches at the edge's two ends (its other two corners are 34 mm up).
+TEST(FaceManifolds, AHullOnAnEdgeTouchesAtTheEdgesEnds) {
+  CollisionShape cube = reference::collisionShape(ShapeType::kMesh, Eigen::Vector3d::Zero(), 0.5, 0);
+  cube.mesh = primitives::box(Eigen::Vector3d::Constant(0.1));
+  const Eigen::Quaterniond q = Eigen::Quaterniond(Eigen::AngleAxisd(kPi / 6.0, Eigen::Vector3d::UnitZ())) *
+                               Eigen::Quaterniond(Eigen::AngleAxisd(kPi / 9.0, Eigen::Vector3d::UnitX()));
+  const Eigen::Vector3d corner_a(0.05, -0.05, -0.05), corner_b(-0.05, -0.05, -0.05);  // the lowest edge
+  const Eigen::Vector3d centre(0.1, -0.2, -(q * corner_a).z() - kSink);
+  const auto points = detectBody({table()}, {cube}, {pose(centre, q)});
+  ASSERT_EQ(points.size(), 2u) << describe(points);
+  EXPECT_TRUE(hasPoint(points, centre + q * corner_a)) << describe(points);
+  EXPECT_TRUE(hasPoint(points, centre + q * corner_b)) << describe(points);
+  for (const BodyPoint& p : points) EXPECT_NEAR(p.distance, -kSink, kExact);
+}
+
 // Capsule on capsule: crossed, one point at the crossing; parallel and offset along their axes, the two
 // ends of their overlap. (Two segments that are not parallel would otherwise clip to the whole upper
 // capsule's length, far from where the two touch.)
