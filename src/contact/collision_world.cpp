@@ -162,12 +162,14 @@ struct CollisionWorld::Impl {
   std::vector<char> asleep;                    // per body: left out of detection (setAsleep)
   std::vector<HullFaces> hull_faces;           // per body: its hull's faces (kMesh), else empty
   std::vector<CollisionShape> environment_shapes;  // without their triangles: what face clipping reads
-  SupportFace face_a, face_b;                  // scratch of detect()
+  SupportFace face_a, face_b;                  // scratch of the face clipping
+  std::vector<ContactPoint> pair_points, clipped_points;  // scratch of pairDistance()
 
   Impl() {
     // A face resting on a face needs several points in one pass. Convex pairs get them by face clipping
-    // after one query (registered below); a shape on a triangle of an environment mesh, and the closest-point
-    // queries of pairDistance, by perturbing the orientation (Bullet's multi-point iterations).
+    // after one query (registered below, for detection and for pairDistance); a shape on a triangle of an
+    // environment mesh, and box pairs' closest points, by perturbing the orientation (Bullet's multi-point
+    // iterations).
     configuration.setPlaneConvexMultipointIterations(4, 4);
     configuration.setConvexConvexMultipointIterations(4, 4);
     one_query.m_numPerturbationIterations = 0;
@@ -176,7 +178,9 @@ struct CollisionWorld::Impl {
                           CONVEX_HULL_SHAPE_PROXYTYPE, SPHERE_SHAPE_PROXYTYPE};
     for (const int first : convex) {
       for (const int second : convex) {
-        if (!hasDedicatedAlgorithm(first, second)) dispatcher.registerCollisionCreateFunc(first, second, &one_query);
+        if (hasDedicatedAlgorithm(first, second)) continue;
+        dispatcher.registerCollisionCreateFunc(first, second, &one_query);
+        dispatcher.registerClosestPointsCreateFunc(first, second, &one_query);
       }
     }
     // Objects enter the tree without pairing: the broad phase pairs them all at the first detection, after
@@ -378,29 +382,32 @@ const CollisionShape* CollisionWorld::facedShape(std::size_t object, const HullF
 
 bool CollisionWorld::addFacePoints(const btPersistentManifold& manifold, double max_distance,
                                    std::vector<ContactPoint>& points) {
-  const auto a = static_cast<std::size_t>(manifold.getBody0()->getUserIndex());
-  const auto b = static_cast<std::size_t>(manifold.getBody1()->getUserIndex());
-  const HullFaces *hull_a = nullptr, *hull_b = nullptr;
-  const Eigen::Isometry3d *X_WA = nullptr, *X_WB = nullptr;
-  const CollisionShape* shape_a = facedShape(a, &hull_a, &X_WA);
-  const CollisionShape* shape_b = facedShape(b, &hull_b, &X_WB);
-  if (shape_a == nullptr || shape_b == nullptr) return false;
-  if (shape_a->type == ShapeType::kBox && shape_b->type == ShapeType::kBox) return false;  // btBoxBoxDetector's
   // The one query's point (the deepest, should the manifold hold more) gives the normal.
   int deepest = -1;
   for (int c = 0; c < manifold.getNumContacts(); ++c) {
     if (deepest < 0 || manifold.getContactPoint(c).getDistance() < manifold.getContactPoint(deepest).getDistance()) deepest = c;
   }
-  if (deepest < 0 || manifold.getContactPoint(deepest).getDistance() > max_distance) return false;
+  if (deepest < 0) return false;
   const ContactPoint query = pointFrom(manifold.getContactPoint(deepest), manifold.getBody0(), manifold.getBody1());
+  return addFacePoints(query, max_distance, points);
+}
+
+bool CollisionWorld::addFacePoints(const ContactPoint& query, double max_distance, std::vector<ContactPoint>& points) {
+  const HullFaces *hull_a = nullptr, *hull_b = nullptr;
+  const Eigen::Isometry3d *X_WA = nullptr, *X_WB = nullptr;
+  const CollisionShape* shape_a = facedShape(query.a, &hull_a, &X_WA);
+  const CollisionShape* shape_b = facedShape(query.b, &hull_b, &X_WB);
+  if (shape_a == nullptr || shape_b == nullptr) return false;
+  if (shape_a->type == ShapeType::kBox && shape_b->type == ShapeType::kBox) return false;  // btBoxBoxDetector's
+  if (query.distance > max_distance) return false;
   supportingFace(*shape_a, hull_a, *X_WA, -query.normal, impl_->face_a);
   supportingFace(*shape_b, hull_b, *X_WB, query.normal, impl_->face_b);
   const std::size_t first = points.size();
   if (!clipFaces(impl_->face_a, impl_->face_b, query.normal, max_distance, query, points)) return false;
   // The clipped points lie on the exact surfaces, the query's on surfaces whose edges and corners may be
   // rounded inward by a margin (a box's, a cylinder's): the deepest clipped point can lie no farther out
-  // than the query's.
-  // Farther out, the faces do not hold the contact (a corner of the pair the clipping missed).
+  // than the query's. Farther out, the faces do not hold the contact (a corner of the pair the clipping
+  // missed).
   double clipped = max_distance;
   for (std::size_t i = first; i < points.size(); ++i) clipped = std::min(clipped, points[i].distance);
   if (clipped <= query.distance + kFaceDepthTolerance) return true;
@@ -456,12 +463,26 @@ double CollisionWorld::pairDistance(std::size_t a, std::size_t b, double max_dis
     out.clear();
     return isPlane(b) ? planeContacts(a, b, max_distance, out) : planeContacts(b, a, max_distance, out);
   }
+  std::vector<ContactPoint>& found = impl_->pair_points;
+  found.clear();
   PairCollector collector;
-  collector.points = points;
+  collector.points = &found;
   collector.smallest = max_distance;
   collector.m_closestDistanceThreshold = max_distance;
-  if (points) points->clear();
   impl_->world.contactPairTest(impl_->objects[a].get(), impl_->objects[b].get(), collector);
+  // A pair that face clipping serves gets its points, and its distance, as the detection does: from the
+  // query's deepest point, on the exact surfaces (a located impact then meets a face with the whole face).
+  const auto deepest = std::min_element(found.begin(), found.end(), [](const ContactPoint& x, const ContactPoint& y) {
+    return x.distance < y.distance;
+  });
+  std::vector<ContactPoint>& out = points ? *points : impl_->clipped_points;
+  out.clear();
+  if (deepest != found.end() && addFacePoints(ContactPoint(*deepest), max_distance, out)) {
+    double smallest = max_distance;
+    for (const ContactPoint& point : out) smallest = std::min(smallest, point.distance);
+    return smallest;
+  }
+  if (points) *points = found;
   return collector.smallest;
 }
 

@@ -62,7 +62,8 @@ class CollisionWorld {
   bool isPlane(std::size_t object) const;
 
   /// The closest points of two objects at their poses as set, no farther apart than `max_distance` [m];
-  /// none if they are farther. Returns the smallest signed distance, or +max_distance.
+  /// none if they are farther (a pair that face clipping serves: its clipped points, as detect gives them).
+  /// Returns the smallest signed distance, or +max_distance.
   double pairDistance(std::size_t a, std::size_t b, double max_distance, std::vector<ContactPoint>* points);
 
   /// Every object but `self` whose bounding box in the broad phase (as of the last detect) meets the box
@@ -84,8 +85,9 @@ class CollisionWorld {
   /// An object whose faces give its contact points (a box, cylinder, capsule or a body's hull), with its
   /// hull's faces (kMesh) and its pose; null for the others (spheres, planes, triangle meshes).
   const CollisionShape* facedShape(std::size_t object, const HullFaces** hull, const Eigen::Isometry3d** X_WS) const;
-  /// A pair's points by face clipping from the normal of its manifold's one query (face_manifold.hpp);
-  /// false, adding nothing, where the pair's shapes or faces do not make them.
+  /// A pair's points by face clipping from the normal of its one query's point (face_manifold.hpp), or of
+  /// its manifold's deepest; false, adding nothing, where the pair's shapes or faces do not make them.
+  bool addFacePoints(const ContactPoint& query, double max_distance, std::vector<ContactPoint>& points);
   bool addFacePoints(const btPersistentManifold& manifold, double max_distance, std::vector<ContactPoint>& points);
   struct Impl;
   std::unique_ptr<Impl> impl_;

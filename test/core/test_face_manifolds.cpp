@@ -378,3 +378,51 @@ TEST(FaceManifolds, AStackOfStandingCylindersStands) {
   scene.step(5000);
   EXPECT_LE((scene.state(4).p_WB - poses[4].translation()).norm(), 1e-3);
 }
+
+// A body dropped flat onto the table's face lands on its whole face at once: the located impact takes every
+// point of the patch (docs/contact.md, step 3), and for a cylinder on its end, a hexagonal hull on its
+// hexagon and a capsule lying level, all symmetric about the centre of mass, the impulses add up to no
+// torque. So it bounces straight up (e = 0.5: to e² of its drop height, as the ball of §4.1) without turning
+// (an off-centre impulse of one point at the rim would spin it at ~ v r M / I: rad/s). Dropped from
+// 0.2 m, followed to the top of its first bounce.
+TEST(FaceManifolds, BodiesDroppedFlatBounceStraightUpWithoutTurning) {
+  CollisionShape prism = reference::collisionShape(ShapeType::kMesh, Eigen::Vector3d::Zero(), 0.5, 0.5);
+  prism.mesh = hexagonalPrism();
+  const Eigen::Vector3d diagonal(std::cos(0.6), std::sin(0.6), 0.0);
+  struct Case {
+    std::string name;
+    CollisionShape shape;
+    MassProperties mass;
+    Eigen::Quaterniond q;
+    double height;  // of the centre above the face when touching
+  };
+  const std::vector<Case> cases = {
+      {"cylinder on its end", reference::collisionShape(ShapeType::kCylinder, Eigen::Vector3d(0.05, 0.2, 0), 0.5, 0.5),
+       MassProperties::cylinder(1.0, 0.05, 0.2), Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ())), 0.1},
+      {"hexagonal hull", prism, MassProperties::box(1.0, Eigen::Vector3d(0.17, 0.17, 0.08)),
+       Eigen::Quaterniond(Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitZ())), 0.04},
+      {"capsule lying", reference::collisionShape(ShapeType::kCapsule, Eigen::Vector3d(0.03, 0.3, 0), 0.5, 0.5),
+       MassProperties::cylinder(1.0, 0.03, 0.36), Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), diagonal), 0.03},
+  };
+  const double drop = 0.2, e = 0.5;
+  for (const Case& c : cases) {
+    CollisionShape floor = table();
+    floor.material.restitution = e;
+    const Eigen::Vector3d start(0.1, -0.05, c.height + drop);
+    Scene scene = sceneOf({floor}, {c.shape}, {c.mass}, {pose(start, c.q)});
+    double previous_vz = 0.0, apex = 0.0;
+    for (int i = 0; i < 2000; ++i) {
+      scene.step(1);
+      const double vz = scene.state(0).P_W.z();
+      if (previous_vz > 0.0 && vz <= 0.0) {
+        apex = scene.state(0).p_WB.z() - c.height + vz * vz / (2.0 * kG);
+        break;
+      }
+      previous_vz = vz;
+    }
+    const State& s = scene.state(0);
+    EXPECT_NEAR(apex, e * e * drop, 1e-6 * drop) << c.name;
+    EXPECT_LE(s.L_W.norm(), 1e-9) << c.name << " turns";
+    EXPECT_LE((s.p_WB - start).head<2>().norm(), 1e-9) << c.name << " moved sideways";
+  }
+}
