@@ -1,8 +1,9 @@
 // The collision library behind the contact step: Bullet's collision module (double precision), used for what
 // it is made for: a dynamic AABB tree broad phase, narrow phases per shape pair (one GJK/EPA query whose
 // normal face clipping turns into the pair's points, face_manifold.hpp; Bullet's own box–box and sphere
-// algorithms), pair distances and box queries. Nothing of Bullet leaves this file pair (and convex_hull.cpp);
-// the rest of the core sees Eigen types.
+// algorithms), pair distances and box queries. Nothing of Bullet leaves its sources (collision_world.cpp,
+// collision_pairs.cpp, their collision_world_impl.hpp, and convex_hull.cpp); the rest of the core sees Eigen
+// types.
 #pragma once
 
 #include <Eigen/Core>

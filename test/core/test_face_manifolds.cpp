@@ -124,7 +124,9 @@ TEST(FaceManifolds, ACapsuleTouchesWithBothEndsLevelAndWithTheLowerEndTilted) {
     const Eigen::Vector3d down = -radius * Eigen::Vector3d::UnitZ();
     ASSERT_EQ(points.size(), tilt == 0.0 ? 2u : 1u) << "tilt " << tilt << ": " << describe(points);
     EXPECT_TRUE(hasPoint(points, low_end + down)) << describe(points);
-    if (tilt == 0.0) EXPECT_TRUE(hasPoint(points, low_end + length * axis + down)) << describe(points);
+    if (tilt == 0.0) {
+      EXPECT_TRUE(hasPoint(points, low_end + length * axis + down)) << describe(points);
+    }
     for (const BodyPoint& p : points) EXPECT_NEAR(p.distance, -kSink, kExact);
   }
 }
@@ -179,21 +181,65 @@ TEST(FaceManifolds, AHullOnATableCornerTouchesAtCornersOfTheOverlap) {
   }
 }
 
-// A cube hull rocking on an edge on the table (tilted 20° about its x axis, turned 30° about the vertical):
-// the table's face lies along the normal and the cube's lowest face, 20° off it, is clipped to it, so the
-// pair touches at the edge's two ends (its other two corners are 34 mm up).
-TEST(FaceManifolds, AHullOnAnEdgeTouchesAtTheEdgesEnds) {
+namespace {
+
+// The round table: the top end (z = 0) of a standing cylinder of the environment, 1 m across.
+CollisionShape roundTable() {
+  CollisionShape cylinder = reference::collisionShape(ShapeType::kCylinder, Eigen::Vector3d(0.5, 0.2, 0), 0.5, 0);
+  cylinder.pose.translation() = Eigen::Vector3d(0.0, 0.0, -0.1);
+  return cylinder;
+}
+
+}  // namespace
+
+// A body rocking on an edge (tilted 20° about its x axis, turned 30° about the vertical), 0.5 mm into the
+// face below: the face below lies along the normal and the body's lowest face, 20° off it, is clipped to it,
+// so the pair touches at the edge's two ends, to 1e-9 m. A cube hull on the table, and a box on the round
+// table (a box's and a cylinder's collision margins round their edges inside them: GJK alone would see this
+// edge only once it is 1.1 mm in).
+TEST(FaceManifolds, ABodyOnAnEdgeTouchesAtTheEdgesEnds) {
   CollisionShape cube = reference::collisionShape(ShapeType::kMesh, Eigen::Vector3d::Zero(), 0.5, 0);
   cube.mesh = primitives::box(Eigen::Vector3d::Constant(0.1));
+  const CollisionShape box = reference::collisionShape(ShapeType::kBox, Eigen::Vector3d(0.2, 0.16, 0.1), 0.5, 0);
+  struct Case {
+    CollisionShape below, body;
+    Eigen::Vector3d half;  // the body's half extents: its lowest edge runs from (h, −h, −h) to (−h, −h, −h)
+  };
   const Eigen::Quaterniond q = Eigen::Quaterniond(Eigen::AngleAxisd(kPi / 6.0, Eigen::Vector3d::UnitZ())) *
                                Eigen::Quaterniond(Eigen::AngleAxisd(kPi / 9.0, Eigen::Vector3d::UnitX()));
-  const Eigen::Vector3d corner_a(0.05, -0.05, -0.05), corner_b(-0.05, -0.05, -0.05);  // the lowest edge
-  const Eigen::Vector3d centre(0.1, -0.2, -(q * corner_a).z() - kSink);
-  const auto points = detectBody({table()}, {cube}, {pose(centre, q)});
-  ASSERT_EQ(points.size(), 2u) << describe(points);
-  EXPECT_TRUE(hasPoint(points, centre + q * corner_a)) << describe(points);
-  EXPECT_TRUE(hasPoint(points, centre + q * corner_b)) << describe(points);
-  for (const BodyPoint& p : points) EXPECT_NEAR(p.distance, -kSink, kExact);
+  for (const Case& c : {Case{table(), cube, Eigen::Vector3d::Constant(0.05)}, Case{roundTable(), box, Eigen::Vector3d(0.1, 0.08, 0.05)}}) {
+    const Eigen::Vector3d corner_a(c.half.x(), -c.half.y(), -c.half.z()), corner_b(-c.half.x(), -c.half.y(), -c.half.z());
+    const Eigen::Vector3d centre(0.1, -0.2, -(q * corner_a).z() - kSink);
+    const auto points = detectBody({c.below}, {c.body}, {pose(centre, q)});
+    const std::string what = shapeTypeName(c.body.type);
+    ASSERT_EQ(points.size(), 2u) << what << ": " << describe(points);
+    EXPECT_TRUE(hasPoint(points, centre + q * corner_a)) << what << ": " << describe(points);
+    EXPECT_TRUE(hasPoint(points, centre + q * corner_b)) << what << ": " << describe(points);
+    for (const BodyPoint& p : points) EXPECT_NEAR(p.distance, -kSink, kExact) << what;
+  }
+}
+
+// A small cube (8 cm) standing on a corner on the round table, 0.5 mm into it: the corner, exactly. Its 4 mm
+// margin rounds the corner 2.9 mm inside it, farther than the pair's Bullet manifold keeps points (1.5 mm
+// for this cube), so the query must reach beyond the near distance by the margins (docs/contact.md,
+// "Shapes"). The first detection, with the cube 1 cm up, makes the pair's manifold, as the steps before a
+// landing do.
+TEST(FaceManifolds, ASmallBoxOnACornerOnARoundTableTouchesAtTheCorner) {
+  const CollisionShape round_table = roundTable();
+  const CollisionShape cube = reference::collisionShape(ShapeType::kBox, Eigen::Vector3d::Constant(0.08), 0.5, 0);
+  const Eigen::Vector3d corner(-0.04, -0.04, -0.04);
+  const Eigen::Quaterniond q = Eigen::Quaterniond::FromTwoVectors(corner, -Eigen::Vector3d::UnitZ());
+  const Eigen::Vector3d centre(0.2, -0.1, -(q * corner).z() - kSink);
+  CollisionWorld world({round_table}, {cube}, {pose(centre + Eigen::Vector3d(0, 0, 0.01), q)});
+  std::vector<ContactPoint> points;
+  world.detect(points, kNear);
+  EXPECT_TRUE(points.empty());
+  world.setPose(0, centre, q);
+  world.detect(points, kNear);
+  ASSERT_EQ(points.size(), 1u);
+  const Eigen::Vector3d on_cube = points[0].a == 0 ? points[0].on_a : points[0].on_b;
+  EXPECT_LE((on_cube - (centre + q * corner)).norm(), kExact);
+  EXPECT_NEAR(points[0].distance, -kSink, kExact);
 }
 
 // Capsule on capsule: crossed, one point at the crossing; parallel and offset along their axes, the two

@@ -1,0 +1,136 @@
+// One pair of objects at a time: which shapes face clipping serves and the points it makes them, a body's
+// points on a half-space, and the pair distance that locates impacts and sweeps fast bodies.
+#include "collision_world.hpp"
+
+#include "collision_world_impl.hpp"
+#include "face_manifold.hpp"
+
+namespace rigid_body {
+namespace contact {
+
+namespace {
+
+// How much farther out than the one query's point face clipping may put a pair's deepest point [m]: well
+// above EPA's accuracy on a face, far below any shape's size.
+constexpr double kFaceDepthTolerance = 1e-4;
+
+}  // namespace
+
+const CollisionShape* CollisionWorld::facedShape(std::size_t object, const HullFaces** hull,
+                                                 const Eigen::Isometry3d** X_WS) const {
+  const bool body = isBody(object);
+  const CollisionShape& shape = body ? impl_->body_shapes[object] : impl_->environment_shapes[object - bodyCount()];
+  const bool faced = shape.type == ShapeType::kBox || shape.type == ShapeType::kCylinder ||
+                     shape.type == ShapeType::kCapsule || (shape.type == ShapeType::kMesh && body);
+  if (!faced) return nullptr;
+  *hull = shape.type == ShapeType::kMesh ? &impl_->hull_faces[object] : nullptr;
+  *X_WS = body ? &impl_->shape_poses[object] : &shape.pose;
+  return &shape;
+}
+
+bool CollisionWorld::addFacePoints(const btPersistentManifold& manifold, double max_distance,
+                                   std::vector<ContactPoint>& points) {
+  // The one query's point (the deepest, should the manifold hold more) gives the normal.
+  int deepest = -1;
+  for (int c = 0; c < manifold.getNumContacts(); ++c) {
+    if (deepest < 0 || manifold.getContactPoint(c).getDistance() < manifold.getContactPoint(deepest).getDistance()) deepest = c;
+  }
+  if (deepest < 0) return false;
+  const ContactPoint query = pointFrom(manifold.getContactPoint(deepest), manifold.getBody0(), manifold.getBody1());
+  return addFacePoints(query, max_distance, points);
+}
+
+bool CollisionWorld::addFacePoints(const ContactPoint& query, double max_distance, std::vector<ContactPoint>& points) {
+  const HullFaces *hull_a = nullptr, *hull_b = nullptr;
+  const Eigen::Isometry3d *X_WA = nullptr, *X_WB = nullptr;
+  const CollisionShape* shape_a = facedShape(query.a, &hull_a, &X_WA);
+  const CollisionShape* shape_b = facedShape(query.b, &hull_b, &X_WB);
+  if (shape_a == nullptr || shape_b == nullptr) return false;
+  if (shape_a->type == ShapeType::kBox && shape_b->type == ShapeType::kBox) return false;  // btBoxBoxDetector's
+  supportingFace(*shape_a, hull_a, *X_WA, -query.normal, impl_->face_a);
+  supportingFace(*shape_b, hull_b, *X_WB, query.normal, impl_->face_b);
+  const std::size_t first = points.size();
+  if (!clipFaces(impl_->face_a, impl_->face_b, query.normal, max_distance, query, points)) return false;
+  // The clipped points lie on the exact surfaces, the query's on surfaces whose edges and corners may be
+  // rounded inward by a margin (a box's, a cylinder's): the deepest clipped point can lie no farther out
+  // than the query's. Farther out, the faces do not hold the contact (a corner of the pair the clipping
+  // missed).
+  double clipped = max_distance;
+  for (std::size_t i = first; i < points.size(); ++i) clipped = std::min(clipped, points[i].distance);
+  if (clipped <= query.distance + kFaceDepthTolerance) return true;
+  points.resize(first);
+  return false;
+}
+
+double CollisionWorld::planeContacts(std::size_t body, std::size_t plane_object, double max_distance,
+                                     std::vector<ContactPoint>& points) const {
+  const Impl::Plane* plane = &impl_->planes[static_cast<std::size_t>(impl_->plane_of_object[plane_object])];
+  double smallest = max_distance;
+  const Eigen::Vector3d& n = plane->normal;
+  planeFeatures(impl_->body_shapes[body], impl_->shape_poses[body], n, [&](int feature, const Eigen::Vector3d& x) {
+    const double distance = n.dot(x) - plane->offset;
+    smallest = std::min(smallest, distance);
+    if (distance > max_distance) return;
+    ContactPoint point;
+    point.a = body;
+    point.b = plane_object;
+    point.on_a = x;
+    point.on_b = x - distance * n;
+    point.normal = n;
+    point.distance = distance;
+    point.feature = feature;
+    points.push_back(point);
+  });
+  return smallest;
+}
+
+namespace {
+
+struct PairCollector : btCollisionWorld::ContactResultCallback {
+  std::vector<ContactPoint>* points = nullptr;
+  btScalar addSingleResult(btManifoldPoint& p, const btCollisionObjectWrapper* a, int, int,
+                           const btCollisionObjectWrapper* b, int, int) override {
+    points->push_back(pointFrom(p, a->getCollisionObject(), b->getCollisionObject()));
+    return 0;
+  }
+};
+
+}  // namespace
+
+double CollisionWorld::pairDistance(std::size_t a, std::size_t b, double max_distance, std::vector<ContactPoint>* points) {
+  if (isPlane(a) || isPlane(b)) {
+    std::vector<ContactPoint> scratch;
+    std::vector<ContactPoint>& out = points ? *points : scratch;
+    out.clear();
+    return isPlane(b) ? planeContacts(a, b, max_distance, out) : planeContacts(b, a, max_distance, out);
+  }
+  std::vector<ContactPoint>& found = impl_->pair_points;
+  found.clear();
+  PairCollector collector;
+  collector.points = &found;
+  collector.m_closestDistanceThreshold = max_distance + queryReach(*impl_->objects[a], *impl_->objects[b]);
+  impl_->world.contactPairTest(impl_->objects[a].get(), impl_->objects[b].get(), collector);
+  // A pair that face clipping serves gets its points, and its distance, as the detection does: from the
+  // query's deepest point, on the exact surfaces (a located impact then meets a face with the whole face).
+  const auto deepest = std::min_element(found.begin(), found.end(), [](const ContactPoint& x, const ContactPoint& y) {
+    return x.distance < y.distance;
+  });
+  std::vector<ContactPoint>& out = points ? *points : impl_->clipped_points;
+  out.clear();
+  if (deepest != found.end() && addFacePoints(ContactPoint(*deepest), max_distance, out)) {
+    double smallest = max_distance;
+    for (const ContactPoint& point : out) smallest = std::min(smallest, point.distance);
+    return smallest;
+  }
+  // Else the query's own points, those within max_distance (the reach may have found farther ones).
+  double smallest = max_distance;
+  for (const ContactPoint& point : found) {
+    if (point.distance > max_distance) continue;
+    smallest = std::min(smallest, point.distance);
+    if (points) points->push_back(point);
+  }
+  return smallest;
+}
+
+}  // namespace contact
+}  // namespace rigid_body

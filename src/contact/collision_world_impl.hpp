@@ -1,0 +1,253 @@
+// The inside of CollisionWorld, shared by its two source files (collision_world.cpp: the world, its objects
+// and the detection; collision_pairs.cpp: one pair at a time, its distance and its points): Bullet's world,
+// the dispatcher that asks narrow phases for near points, and the conversions. Bullet's headers appear here,
+// in those two files and in convex_hull.cpp only.
+#pragma once
+
+#include <btBulletCollisionCommon.h>
+#include <BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h>
+#include <BulletCollision/CollisionShapes/btConvexHullShape.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
+
+#include <algorithm>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include "collision_world.hpp"
+#include "convex_hull.hpp"
+#include "shape_features.hpp"
+
+namespace rigid_body {
+namespace contact {
+
+inline btVector3 toBt(const Eigen::Vector3d& v) { return btVector3(v.x(), v.y(), v.z()); }
+inline Eigen::Vector3d fromBt(const btVector3& v) { return Eigen::Vector3d(v.x(), v.y(), v.z()); }
+inline btQuaternion toBt(const Eigen::Quaterniond& q) { return btQuaternion(q.x(), q.y(), q.z(), q.w()); }
+inline btTransform toBt(const Eigen::Isometry3d& X) {
+  const Eigen::Quaterniond q(X.rotation());
+  return btTransform(toBt(q), toBt(Eigen::Vector3d(X.translation())));
+}
+
+// GJK-based pairs round a convex shape's corners by its margin; Bullet's default (0.04 m) is large for
+// small bodies, so the margin is a small fraction of the shape, at most 4 mm.
+inline double marginFor(double smallest_extent) { return std::min(0.004, 0.05 * smallest_extent); }
+
+inline ContactPoint pointFrom(const btManifoldPoint& p, const btCollisionObject* a, const btCollisionObject* b) {
+  ContactPoint point;
+  point.a = static_cast<std::size_t>(a->getUserIndex());
+  point.b = static_cast<std::size_t>(b->getUserIndex());
+  point.on_a = fromBt(p.getPositionWorldOnA());
+  point.on_b = fromBt(p.getPositionWorldOnB());
+  point.normal = fromBt(p.m_normalWorldOnB);
+  point.distance = p.getDistance();
+  return point;
+}
+
+// How much farther than the near distance a pair's one query must look for face clipping to find what is
+// within it [m]: a box's and a cylinder's collision margins round their edges and corners inside them, so
+// GJK sees such an edge only once the exact edge is up to a margin deep (a box's edge tilted 20° with a
+// 4 mm margin: 1.1 mm); the clipped points, on the exact surfaces, then decide. Zero for pairs
+// that face clipping does not serve (box–box, spheres, triangles) and for shapes without such rounding (a
+// capsule's margin is its radius, which GJK treats exactly; a hull has none).
+inline double queryReach(const btCollisionObject& a, const btCollisionObject& b) {
+  const int type_a = a.getCollisionShape()->getShapeType(), type_b = b.getCollisionShape()->getShapeType();
+  const auto clipped = [](int type) {
+    return type == BOX_SHAPE_PROXYTYPE || type == CYLINDER_SHAPE_PROXYTYPE || type == CAPSULE_SHAPE_PROXYTYPE ||
+           type == CONVEX_HULL_SHAPE_PROXYTYPE;
+  };
+  if (!clipped(type_a) || !clipped(type_b) || (type_a == BOX_SHAPE_PROXYTYPE && type_b == BOX_SHAPE_PROXYTYPE)) return 0.0;
+  const auto rounding = [](const btCollisionObject& object, int type) {
+    return type == BOX_SHAPE_PROXYTYPE || type == CYLINDER_SHAPE_PROXYTYPE ? object.getCollisionShape()->getMargin() : 0.0;
+  };
+  return rounding(a, type_a) + rounding(b, type_b);
+}
+
+// Bullet's dispatcher, which reports the points of a pair up to `near_distance` apart (its own near callback
+// asks for touching points only: two spheres 1e-17 m apart had no contact, so a ball resting against
+// another did not count as touching, and an impact could not travel through the pair).
+struct NearDispatcher : btCollisionDispatcher {
+  explicit NearDispatcher(btCollisionConfiguration* configuration) : btCollisionDispatcher(configuration) {
+    setNearCallback(&NearDispatcher::nearCallback);
+  }
+  double near_distance = 0.0;
+  /// Each body's bounding sphere as placed: its centre of mass and its outer radius [m]. (A box's or
+  /// cylinder's collision margin lies inside it, a hull has none: GJK never sees a shape larger than it is.)
+  std::vector<Eigen::Vector4d> bounding_spheres;
+
+  // btCollisionDispatcher::defaultNearCallback, with the result's distance threshold set.
+  static void nearCallback(btBroadphasePair& pair, btCollisionDispatcher& dispatcher, const btDispatcherInfo& info) {
+    auto* a = static_cast<btCollisionObject*>(pair.m_pProxy0->m_clientObject);
+    auto* b = static_cast<btCollisionObject*>(pair.m_pProxy1->m_clientObject);
+    if (!dispatcher.needsCollision(a, b)) return;
+    // Two bodies whose bounding spheres are farther apart than the near distance have no point within it:
+    // one subtraction instead of a GJK query. The broad phase pairs boxes fattened for motion (Bullet's
+    // tree margin and velocity prediction), so in a pile most of its pairs are such.
+    auto& near = static_cast<NearDispatcher&>(dispatcher);
+    const auto i = static_cast<std::size_t>(a->getUserIndex()), j = static_cast<std::size_t>(b->getUserIndex());
+    if (i < near.bounding_spheres.size() && j < near.bounding_spheres.size()) {
+      const Eigen::Vector4d& s_i = near.bounding_spheres[i];
+      const Eigen::Vector4d& s_j = near.bounding_spheres[j];
+      if ((s_i.head<3>() - s_j.head<3>()).norm() - s_i[3] - s_j[3] > near.near_distance) return;
+    }
+    btCollisionObjectWrapper a_wrap(nullptr, a->getCollisionShape(), a, a->getWorldTransform(), -1, -1);
+    btCollisionObjectWrapper b_wrap(nullptr, b->getCollisionShape(), b, b->getWorldTransform(), -1, -1);
+    if (!pair.m_algorithm) pair.m_algorithm = dispatcher.findAlgorithm(&a_wrap, &b_wrap, nullptr, BT_CONTACT_POINT_ALGORITHMS);
+    if (!pair.m_algorithm) return;
+    btManifoldResult result(&a_wrap, &b_wrap);
+    result.m_closestPointDistanceThreshold = near.near_distance + queryReach(*a, *b);
+    // A manifold drops points farther out than its breaking threshold (a few per cent of the shapes' size):
+    // it must keep what the query's reach asks for (from the pair's second query on; the first makes it).
+    near.manifolds.resizeNoInitialize(0);
+    pair.m_algorithm->getAllContactManifolds(near.manifolds);
+    for (int m = 0; m < near.manifolds.size(); ++m) {
+      btPersistentManifold& manifold = *near.manifolds[m];
+      if (manifold.getContactBreakingThreshold() < result.m_closestPointDistanceThreshold) {
+        manifold.setContactBreakingThreshold(result.m_closestPointDistanceThreshold);
+      }
+    }
+    pair.m_algorithm->processCollision(&a_wrap, &b_wrap, info, &result);
+  }
+  btManifoldArray manifolds;  // scratch of nearCallback
+};
+
+// Box–box (btBoxBoxDetector: a face's points in one pass), sphere–sphere and sphere–box keep Bullet's
+// dedicated algorithms; the other convex pairs get one query and face clipping. (A triangle of an
+// environment mesh keeps the multi-point mode: its pairs are not registered here.)
+inline bool hasDedicatedAlgorithm(int a, int b) {
+  const auto box_or_sphere = [](int type) { return type == BOX_SHAPE_PROXYTYPE || type == SPHERE_SHAPE_PROXYTYPE; };
+  return box_or_sphere(a) && box_or_sphere(b);
+}
+
+struct CollisionWorld::Impl {
+  btDefaultCollisionConfiguration configuration;
+  // One GJK/EPA query per pair of the shapes whose faces give the points (face_manifold.hpp): Bullet's
+  // convex–convex algorithm with its perturbation turned off.
+  btGjkEpaPenetrationDepthSolver penetration_solver;
+  btConvexConvexAlgorithm::CreateFunc one_query{&penetration_solver};
+  NearDispatcher dispatcher{&configuration};
+  btDbvtBroadphase broadphase;
+  btCollisionWorld world{&dispatcher, &broadphase, &configuration};
+  std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  std::vector<std::unique_ptr<btTriangleMesh>> triangle_meshes;
+  std::vector<std::unique_ptr<btCollisionObject>> objects;  // bodies first, then the environment
+  std::vector<btTransform> body_offsets;                     // X_BS of each body's shape
+  std::size_t body_count = 0;
+  // Half-spaces are not in Bullet's world: a plane meets a body at the body's features (below).
+  struct Plane {
+    Eigen::Vector3d normal;
+    double offset;
+    std::size_t object;
+  };
+  std::vector<Plane> planes;
+  std::vector<int> plane_of_object;  // per object: its index in planes, or −1
+  std::vector<CollisionShape> body_shapes;
+  std::vector<Eigen::Isometry3d> shape_poses;  // X_WS of each body's shape as last placed
+  std::vector<Eigen::Vector3d> body_origins;   // p_WB of each body as last placed
+  std::vector<double> body_reach;              // each body's outer radius about its origin [m]
+  std::vector<char> asleep;                    // per body: left out of detection (setAsleep)
+  std::vector<HullFaces> hull_faces;           // per body: its hull's faces (kMesh), else empty
+  std::vector<CollisionShape> environment_shapes;  // without their triangles: what face clipping reads
+  SupportFace face_a, face_b;                  // scratch of the face clipping
+  std::vector<ContactPoint> pair_points, clipped_points;  // scratch of pairDistance()
+
+  Impl() {
+    // A face resting on a face needs several points in one pass. Convex pairs get them by face clipping
+    // after one query (registered below, for detection and for pairDistance); a shape on a triangle of an
+    // environment mesh, and box pairs' closest points, by perturbing the orientation (Bullet's multi-point
+    // iterations).
+    configuration.setPlaneConvexMultipointIterations(4, 4);
+    configuration.setConvexConvexMultipointIterations(4, 4);
+    one_query.m_numPerturbationIterations = 0;
+    one_query.m_minimumPointsPerturbationThreshold = 0;
+    const int convex[] = {BOX_SHAPE_PROXYTYPE, CYLINDER_SHAPE_PROXYTYPE, CAPSULE_SHAPE_PROXYTYPE,
+                          CONVEX_HULL_SHAPE_PROXYTYPE, SPHERE_SHAPE_PROXYTYPE};
+    for (const int first : convex) {
+      for (const int second : convex) {
+        if (hasDedicatedAlgorithm(first, second)) continue;
+        dispatcher.registerCollisionCreateFunc(first, second, &one_query);
+        dispatcher.registerClosestPointsCreateFunc(first, second, &one_query);
+      }
+    }
+    // Objects enter the tree without pairing: the broad phase pairs them all at the first detection, after
+    // the start-up check (placementConflict) has refused a scene whose bodies sit inside each other. Paired
+    // as they entered, 5 000 bodies at one point made 12.5 million pairs (gigabytes) before any check.
+    broadphase.m_deferedcollide = true;
+  }
+
+  std::unique_ptr<btCollisionShape> makeShape(const CollisionShape& shape, bool in_environment) {
+    const Eigen::Vector3d& s = shape.size;
+    switch (shape.type) {
+      case ShapeType::kPlane:
+        return std::make_unique<btStaticPlaneShape>(toBt(shape.normal.normalized()), shape.offset);
+      case ShapeType::kBox: {
+        auto box = std::make_unique<btBoxShape>(toBt(0.5 * s));
+        box->setMargin(marginFor(s.minCoeff()));
+        return box;
+      }
+      case ShapeType::kSphere:
+        return std::make_unique<btSphereShape>(s.x());
+      case ShapeType::kCylinder: {
+        auto cylinder = std::make_unique<btCylinderShapeZ>(btVector3(s.x(), s.x(), 0.5 * s.y()));
+        cylinder->setMargin(marginFor(std::min(s.x(), 0.5 * s.y())));
+        return cylinder;
+      }
+      case ShapeType::kCapsule:
+        return std::make_unique<btCapsuleShapeZ>(s.x(), s.y());
+      case ShapeType::kMesh: {
+        if (in_environment) {
+          auto mesh = std::make_unique<btTriangleMesh>();
+          for (const auto& t : shape.mesh.triangles) {
+            mesh->addTriangle(toBt(shape.mesh.vertices[t[0]]), toBt(shape.mesh.vertices[t[1]]),
+                              toBt(shape.mesh.vertices[t[2]]));
+          }
+          auto bvh = std::make_unique<btBvhTriangleMeshShape>(mesh.get(), true);
+          triangle_meshes.push_back(std::move(mesh));
+          return bvh;
+        }
+        // A moving mesh collides as its convex hull (docs/contact.md): the narrow phases for convex
+        // shapes are exact and fast; a concave body needs a convex decomposition given as the shape. The
+        // constructor has made shape.mesh the hull's vertices.
+        return hullShape(shape.mesh.vertices);
+      }
+    }
+    throw std::invalid_argument("unknown collision shape type");
+  }
+
+  // `X_WB`: a body's pose, set before the object enters the broad phase (an object added at the origin would
+  // pair with every other one there first: N² pairs for a large scene).
+  btCollisionObject* add(const CollisionShape& shape, bool in_environment, int id, const btTransform& X_WB) {
+    plane_of_object.push_back(shape.type == ShapeType::kPlane ? static_cast<int>(planes.size()) : -1);
+    if (shape.type == ShapeType::kPlane) {
+      planes.push_back({shape.normal.normalized(), shape.offset, static_cast<std::size_t>(id)});
+      shapes.push_back(nullptr);
+      objects.push_back(nullptr);
+      return nullptr;
+    }
+    shapes.push_back(makeShape(shape, in_environment));
+    auto object = std::make_unique<btCollisionObject>();
+    object->setCollisionShape(shapes.back().get());
+    object->setUserIndex(id);
+    if (in_environment) {
+      object->setCollisionFlags(object->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT);
+      // Inactive, as Bullet's own static objects are: its dispatcher skips a pair of two inactive objects,
+      // so a sleeping body (setAsleep) on the environment costs no narrow phase.
+      object->setActivationState(ISLAND_SLEEPING);
+      if (shape.type != ShapeType::kPlane) object->setWorldTransform(toBt(shape.pose));
+    } else {
+      object->setActivationState(DISABLE_DEACTIVATION);
+      object->setWorldTransform(X_WB * toBt(shape.pose));
+    }
+    // Static objects never test each other: bodies are in the default group, the environment in the static.
+    const int group = in_environment ? btBroadphaseProxy::StaticFilter : btBroadphaseProxy::DefaultFilter;
+    const int mask = in_environment ? btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter
+                                    : btBroadphaseProxy::AllFilter;
+    world.addCollisionObject(object.get(), group, mask);
+    objects.push_back(std::move(object));
+    return objects.back().get();
+  }
+
+};
+
+}  // namespace contact
+}  // namespace rigid_body
