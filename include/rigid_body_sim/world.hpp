@@ -241,8 +241,7 @@ class World {
   void apply(const Command& command, UpdateResult* result);
   // A wall-time budget read between chunks of steps: the next chunk is not begun where it would end past
   // the deadline if it took as long as the last one did, so an update or a request overruns its budget by
-  // no more than the variation of one chunk's cost (a chunk is one step in a pile: ~5 ms at 1 000 bodies),
-  // not by a whole chunk.
+  // no more than the variation of one chunk's cost (in a pile a chunk is one step), not by a whole chunk.
   class ChunkTimer {
    public:
     ChunkTimer(const World& world, double budget_seconds);  // reads the wall clock: the budget starts now
