@@ -78,20 +78,35 @@ bool clipFaces(const SupportFace& face_a, const SupportFace& face_b, const Eigen
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
     for (const Eigen::Vector3d& v : r) centroid += v;
     centroid /= static_cast<double>(r.size());
+    // The side planes contain n (not the face's normal m): each point kept is then one whose shadow along n
+    // on the reference plane, where its partner lies, falls inside the reference face.
     for (std::size_t e = 0; e < r.size() && !clipped.empty(); ++e) {
       const Eigen::Vector3d& v0 = r[e];
-      Eigen::Vector3d side = (r[(e + 1) % r.size()] - v0).cross(m);
+      Eigen::Vector3d side = (r[(e + 1) % r.size()] - v0).cross(n);
       if (side.dot(centroid - v0) > 0.0) side = -side;  // outward from the face's interior
       clipAgainstPlane(clipped, scratch, side, side.dot(v0), closed);
       std::swap(clipped, scratch);
     }
-  } else {  // a segment: the slab between the planes across it at its ends
-    const Eigen::Vector3d along = r[1] - r[0];
+  } else {  // a segment: the slab between the planes across it at its ends (containing n, as above)
+    const Eigen::Vector3d along = (r[1] - r[0]) - (r[1] - r[0]).dot(n) * n;
     clipAgainstPlane(clipped, scratch, -along, -along.dot(r[0]), closed);
     clipAgainstPlane(scratch, clipped, along, along.dot(r[1]), closed);
   }
   const std::size_t first = points.size();
-  for (const Eigen::Vector3d& p : clipped) addClippedPoint(p, r[0], m, n, reference_is_b, max_distance, pair, points);
+  if (r.size() >= 3) {
+    for (const Eigen::Vector3d& p : clipped) addClippedPoint(p, r[0], m, n, reference_is_b, max_distance, pair, points);
+  } else {  // two segments: each clipped point's partner is the reference segment's point across from it
+    const Eigen::Vector3d along = (r[1] - r[0]).normalized();
+    for (const Eigen::Vector3d& p : clipped) {
+      ContactPoint point = pair;
+      point.normal = n;
+      point.feature = -1;
+      point.on_a = p;  // the reference is b's
+      point.on_b = r[0] + (p - r[0]).dot(along) * along;
+      point.distance = (point.on_a - point.on_b).dot(n);
+      if (point.distance <= max_distance) points.push_back(point);
+    }
+  }
   if (points.size() == first) return false;
   keepFourPoints(points, first);
   return true;
