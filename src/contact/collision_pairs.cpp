@@ -99,8 +99,7 @@ struct PairCollector : btCollisionWorld::ContactResultCallback {
 
 double CollisionWorld::pairDistance(std::size_t a, std::size_t b, double max_distance, std::vector<ContactPoint>* points) {
   if (isPlane(a) || isPlane(b)) {
-    std::vector<ContactPoint> scratch;
-    std::vector<ContactPoint>& out = points ? *points : scratch;
+    std::vector<ContactPoint>& out = points ? *points : impl_->clipped_points;
     out.clear();
     return isPlane(b) ? planeContacts(a, b, max_distance, out) : planeContacts(b, a, max_distance, out);
   }
@@ -117,7 +116,7 @@ double CollisionWorld::pairDistance(std::size_t a, std::size_t b, double max_dis
   });
   std::vector<ContactPoint>& out = points ? *points : impl_->clipped_points;
   out.clear();
-  if (deepest != found.end() && addFacePoints(ContactPoint(*deepest), max_distance, out)) {
+  if (deepest != found.end() && addFacePoints(*deepest, max_distance, out)) {
     double smallest = max_distance;
     for (const ContactPoint& point : out) smallest = std::min(smallest, point.distance);
     return smallest;

@@ -149,7 +149,7 @@ struct CollisionWorld::Impl {
   std::vector<HullFaces> hull_faces;           // per body: its hull's faces (kMesh), else empty
   std::vector<CollisionShape> environment_shapes;  // without their triangles: what face clipping reads
   SupportFace face_a, face_b;                  // scratch of the face clipping
-  std::vector<ContactPoint> pair_points, clipped_points;  // scratch of pairDistance()
+  std::vector<ContactPoint> pair_points, clipped_points;  // scratch of pairDistance() (points it returns to no one)
 
   Impl() {
     // A face resting on a face needs several points in one pass. Convex pairs get them by face clipping

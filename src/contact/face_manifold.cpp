@@ -14,20 +14,18 @@ namespace {
 // parallel: within the face angle, |d_a × d_b| ≤ sin 10°.
 constexpr double kFaceAngleSine = 0.17364817766693034885;
 
-// A clipped incident point p made into a contact point: its partner is p moved along n onto the reference
-// face's plane (through q0, outward normal m), and their distance along n is the pair's there.
-void addClippedPoint(const Eigen::Vector3d& p, const Eigen::Vector3d& q0, const Eigen::Vector3d& m, const Eigen::Vector3d& n,
+// A clipped incident point p and its partner q on the reference face made into a contact point, apart by
+// `distance` along n (from b towards a); kept where that is within max_distance.
+void addClippedPoint(const Eigen::Vector3d& p, const Eigen::Vector3d& q, double distance, const Eigen::Vector3d& n,
                      bool reference_is_b, double max_distance, const ContactPoint& pair, std::vector<ContactPoint>& points) {
-  const double t = (p - q0).dot(m) / n.dot(m);  // p − t n lies on the reference plane
+  if (!(distance <= max_distance)) return;
   ContactPoint point = pair;
   point.normal = n;
   point.feature = -1;
-  if (reference_is_b) {
-    point.on_a = p, point.on_b = p - t * n, point.distance = t;
-  } else {
-    point.on_b = p, point.on_a = p - t * n, point.distance = -t;
-  }
-  if (point.distance <= max_distance) points.push_back(point);
+  point.on_a = reference_is_b ? p : q;
+  point.on_b = reference_is_b ? q : p;
+  point.distance = distance;
+  points.push_back(point);
 }
 
 // Sutherland–Hodgman: keeps the part of `polygon` (closed) or of a segment (`closed` false, two points)
@@ -93,18 +91,14 @@ bool clipFaces(const SupportFace& face_a, const SupportFace& face_b, const Eigen
     clipAgainstPlane(scratch, clipped, along, along.dot(r[1]), closed);
   }
   const std::size_t first = points.size();
-  if (r.size() >= 3) {
-    for (const Eigen::Vector3d& p : clipped) addClippedPoint(p, r[0], m, n, reference_is_b, max_distance, pair, points);
-  } else {  // two segments: each clipped point's partner is the reference segment's point across from it
-    const Eigen::Vector3d along = (r[1] - r[0]).normalized();
-    for (const Eigen::Vector3d& p : clipped) {
-      ContactPoint point = pair;
-      point.normal = n;
-      point.feature = -1;
-      point.on_a = p;  // the reference is b's
-      point.on_b = r[0] + (p - r[0]).dot(along) * along;
-      point.distance = (point.on_a - point.on_b).dot(n);
-      if (point.distance <= max_distance) points.push_back(point);
+  const Eigen::Vector3d along = (r[1] - r[0]).normalized();  // a reference segment's direction
+  for (const Eigen::Vector3d& p : clipped) {
+    if (r.size() >= 3) {  // the partner: p moved along n onto the reference plane (through r[0], normal m)
+      const double t = (p - r[0]).dot(m) / n.dot(m);
+      addClippedPoint(p, p - t * n, reference_is_b ? t : -t, n, reference_is_b, max_distance, pair, points);
+    } else {  // two segments (the reference is b's): the partner is the reference segment's point across
+      const Eigen::Vector3d q = r[0] + (p - r[0]).dot(along) * along;
+      addClippedPoint(p, q, (p - q).dot(n), n, true, max_distance, pair, points);
     }
   }
   if (points.size() == first) return false;
