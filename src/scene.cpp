@@ -68,6 +68,7 @@ void Scene::setThreads(std::size_t threads, std::size_t bodies_per_block) {
 bool Scene::setWideLanes(bool on) {
   wide_lanes_ = on && integrators::BatchStepper::wideInstructionsAvailable();
   if (batches_) batches_->setWideInstructions(wide_lanes_);
+  if (contact_) contact_->setWideLanes(wide_lanes_);
   return wide_lanes_;
 }
 

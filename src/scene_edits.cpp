@@ -34,6 +34,7 @@ void Scene::adoptContactStep(std::unique_ptr<contact::ContactStep> step) {
   collider_running_.assign(colliders.size(), 1);
   collider_failed_.assign(colliders.size(), StepStatus::kOk);
   if (record_contacts_) contact_->setRecording(true);
+  contact_->setWideLanes(wide_lanes_);
 }
 
 std::size_t Scene::addBody(const BodyDefinition& body, const std::optional<CollisionShape>& shape) {

@@ -145,8 +145,9 @@ class Scene {
   /// A body's state at construction (and after every reset), for drift diagnostics.
   const State& initialState(std::size_t body = 0) const { return records_[body].initial; }
 
-  /// Whether four-body batches run as 256-bit (AVX) operations, and a body without a batch in AVX-512's
-  /// instructions (where the CPU has them); on by default where the CPU has AVX.
+  /// Whether four-body batches and the contact solver's four lanes run as 256-bit (AVX) operations, and a
+  /// body without a batch in AVX-512's instructions (where the CPU has them); on by default where the CPU
+  /// has AVX.
   /// Off, both run in the build's baseline instructions (SSE2). The results are the same bits either way;
   /// returns the setting taken (on only where AVX is available).
   bool setWideLanes(bool on);

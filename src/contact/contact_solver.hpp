@@ -108,6 +108,9 @@ bool solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBod
                      const SolveRange& range);
 bool solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options);
 
+/// Each body's dP and dL in `range` from its contacts' impulses (what solveVelocities ends with).
+void sumImpulses(const std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range);
+
 /// An impact at one instant: Poisson's restitution with Coulomb friction, bounded in energy (docs/references.md,
 /// "An impact that never creates energy"). A compression solve (every point stopped, e = 0) gives each point its
 /// compression impulse p_c; a restitution solve then holds each point's normal impulse at (1 + e) p_c or more

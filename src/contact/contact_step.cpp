@@ -409,6 +409,7 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
   solve.position_iterations = settings_.position_iterations;
   solve.penetration_slop = settings_.penetration_slop;
   solve.position_correction = settings_.position_correction;
+  solve.lanes.wide_instructions = wide_lanes_;
   islands_.solve(solver_contacts_, solver_bodies_, island_body_start_, solve, pool_);
   for (std::size_t s = 1; s < solver_bodies_.size(); ++s) {  // 0 is the environment
     const std::size_t k = solver_body_of_[s];

@@ -80,6 +80,8 @@ class ContactStep {
   /// Recording from now on; a scene that starts recording wakes its sleeping islands, so that their reports
   /// are made afresh.
   void setRecording(bool recording);
+  /// Whether the resting solve's four lanes run as AVX operations where the CPU has them (the same bits).
+  void setWideLanes(bool on) { wide_lanes_ = on; }
   const ContactStatistics& statistics() const { return statistics_; }
   /// The last impacts located in time (at most kImpactLog of them, oldest first).
   const std::vector<ImpactEvent>& impacts() const { return impacts_; }
@@ -150,6 +152,7 @@ class ContactStep {
   std::vector<std::size_t> admitted_;  // scratch: the points the resting solve takes
   std::vector<std::pair<std::size_t, std::size_t>> admitted_links_;  // their objects
   std::vector<std::size_t> island_body_start_;  // per island: its first solver body (then one past the last)
+  bool wide_lanes_ = true;
   ThreadPool* pool_ = nullptr;  // the scene's, for the islands; set for the duration of a step
 
   std::unique_ptr<CollisionWorld> world_;

@@ -49,7 +49,17 @@ bool solveRestingContacts(std::vector<SolverContact>& contacts, std::vector<Solv
                           const RestingSolveSettings& settings, const SolveRange& range,
                           std::vector<double>& lift_share) {
   prepareContacts(contacts, bodies, settings.options, range);
-  const bool converged = solveVelocities(contacts, bodies, settings.options, range);
+  LaneContactSolver lanes;
+  char converged = 0;
+  lanes.solve(contacts, bodies, settings.options, &range, 1, &converged, settings.lanes);
+  finishRestingContacts(contacts, bodies, settings, range, lift_share);
+  return converged != 0;
+}
+
+void finishRestingContacts(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies,
+                           const RestingSolveSettings& settings, const SolveRange& range,
+                           std::vector<double>& lift_share) {
+  sumImpulses(contacts, bodies, range);
   // The impulses stand for a contact force constant over the step: besides the momenta they move the body
   // by c h Δv (and turn it by c h Δω), as the integrator would have moved it under that force; then the
   // projection.
@@ -61,7 +71,6 @@ bool solveRestingContacts(std::vector<SolverContact>& contacts, std::vector<Solv
   limitLiftOfNewContacts(contacts, bodies, range, lift_share);
   projectPositions(contacts, bodies, settings.position_iterations, settings.penetration_slop,
                    settings.position_correction, range);
-  return converged;
 }
 
 std::size_t SolverIslands::root(std::size_t body) {
@@ -123,9 +132,19 @@ void SolverIslands::solve(std::vector<SolverContact>& contacts, std::vector<Solv
     in_block += island_start_[island + 1] - island_start_[island];
     if (in_block >= kContactsPerBlock || island + 1 == count) block_end_.push_back(island + 1), in_block = 0;
   }
+  ranges_.resize(count);
+  for (std::size_t island = 0; island < count; ++island) ranges_[island] = rangeOf(island);
+  if (block_solvers_.size() < block_end_.size()) block_solvers_.resize(block_end_.size());
+  // A block's islands are prepared, swept together in the lanes, and finished one by one.
   const auto solveBlock = [&](std::size_t block) {
-    for (std::size_t island = block == 0 ? 0 : block_end_[block - 1]; island < block_end_[block]; ++island) {
-      island_converged_[island] = solveRestingContacts(contacts, bodies, shared, rangeOf(island), lift_share_) ? 1 : 0;
+    const std::size_t begin = block == 0 ? 0 : block_end_[block - 1], end = block_end_[block];
+    for (std::size_t island = begin; island < end; ++island) {
+      prepareContacts(contacts, bodies, shared.options, ranges_[island]);
+    }
+    block_solvers_[block].solve(contacts, bodies, shared.options, ranges_.data() + begin, end - begin,
+                                island_converged_.data() + begin, shared.lanes);
+    for (std::size_t island = begin; island < end; ++island) {
+      finishRestingContacts(contacts, bodies, shared, ranges_[island], lift_share_);
     }
   };
   if (pool != nullptr && pool->threads() > 1 && block_end_.size() > 1) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "contact_solver.hpp"
+#include "lane_contact_solver.hpp"
 #include "rigid_body_sim/thread_pool.hpp"
 
 namespace rigid_body {
@@ -28,15 +29,20 @@ struct RestingSolveSettings {
   int position_iterations = 4;
   double penetration_slop = 1e-4;  ///< [m]
   double position_correction = 0.2;
+  LaneSettings lanes;  ///< how the velocity sweeps run (the same bits either way)
 };
 
-/// The impulses of the resting solve on `range`, with the moves they make: the velocity sweeps, the move by
-/// move_weight Δv, the limit on how far that lifts a contact made within the step, then the position
-/// projection. `lift_share` has an entry per body (scratch; only the range's are written). Returns whether
-/// the velocity sweeps converged.
+/// The impulses of the resting solve on `range`, with the moves they make: the velocity sweeps (in lanes,
+/// lane_contact_solver.hpp), the move by move_weight Δv, the limit on how far that lifts a contact made
+/// within the step, then the position projection. `lift_share` has an entry per body (scratch; only the
+/// range's are written). Returns whether the velocity sweeps converged.
 bool solveRestingContacts(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies,
                           const RestingSolveSettings& settings, const SolveRange& range,
                           std::vector<double>& lift_share);
+/// What solveRestingContacts does after the velocity sweeps: dP and dL, the moves and the projection.
+void finishRestingContacts(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies,
+                           const RestingSolveSettings& settings, const SolveRange& range,
+                           std::vector<double>& lift_share);
 
 class SolverIslands {
  public:
@@ -70,6 +76,8 @@ class SolverIslands {
   std::vector<std::size_t> island_of_contact_;  // = island_of_point_ in order()
   std::vector<char> island_converged_;
   std::vector<std::size_t> block_end_;          // islands [block_end_[b−1], block_end_[b]) form block b
+  std::vector<SolveRange> ranges_;              // per island
+  std::vector<LaneContactSolver> block_solvers_;  // per block: its lanes' buffers, kept between steps
   std::vector<double> lift_share_;              // per solver body
 };
 

@@ -198,4 +198,24 @@ TEST(ContactIslands, AContactSceneStepsToTheSameBitsOnAnyNumberOfThreads) {
   }
 }
 
+TEST(ContactIslands, AContactSceneStepsToTheSameBitsWithAndWithoutWideInstructions) {
+  // The resting solve's four lanes as AVX operations or as the build's baseline ones (where the CPU has AVX;
+  // elsewhere both runs take the baseline and the test holds trivially).
+  const auto run = [](bool wide) {
+    Scene scene = mixedScene();
+    scene.setWideLanes(wide);
+    scene.setThreads(2, 3);
+    scene.step(700);
+    return scene;
+  };
+  const Scene wide = run(true), narrow = run(false);
+  for (std::size_t b = 0; b < wide.bodyCount(); ++b) {
+    const State& r = wide.state(b);
+    const State& o = narrow.state(b);
+    EXPECT_TRUE(sameBits(r.p_WB, o.p_WB) && sameBits(r.P_W, o.P_W) && sameBits(r.L_W, o.L_W) &&
+                std::memcmp(r.q_WB.coeffs().data(), o.q_WB.coeffs().data(), 4 * sizeof(double)) == 0)
+        << "body " << b;
+  }
+}
+
 }  // namespace

@@ -1,0 +1,240 @@
+#include "lane_contact_solver.hpp"
+
+#include <algorithm>
+
+#include "contact_lanes.hpp"
+#include "friction_disc.hpp"
+
+namespace rigid_body {
+namespace contact {
+
+void frictionOntoDisc(const SolverContact& contact, double limit, double& f1, double& f2) {
+  const Eigen::Vector2d f = ontoFrictionDisc(Eigen::Vector2d(f1, f2), contact.tangent_response, limit);
+  f1 = f.x(), f2 = f.y();
+}
+
+namespace {
+
+// Each island's progress through the sweeps (solveVelocities' rule, island by island).
+struct IslandSweeps {
+  std::vector<std::size_t> allowed;  // how many sweeps each island may take
+  std::vector<char> live;            // sweeping in this sweep
+  std::vector<double> change, impulse;
+};
+
+template <class T>
+void loadPoint(PointLanes<T>& s, std::size_t l, const SolverContact& c) {
+  using integrators::setLane;
+  setLane(s.n, l, c.n), setLane(s.t1, l, c.t1), setLane(s.t2, l, c.t2);
+  for (int j = 0; j < 3; ++j) {
+    setLane(s.cross_a[j], l, Eigen::Vector3d(c.cross_a.col(j))), setLane(s.cross_b[j], l, Eigen::Vector3d(c.cross_b.col(j)));
+    setLane(s.response_a[j], l, Eigen::Vector3d(c.response_a.col(j)));
+    setLane(s.response_b[j], l, Eigen::Vector3d(c.response_b.col(j)));
+  }
+  setLane(s.normal_mass, l, c.normal_mass);
+  setLane(s.tangent_mass00, l, c.tangent_mass(0, 0)), setLane(s.tangent_mass01, l, c.tangent_mass(0, 1));
+  setLane(s.tangent_mass11, l, c.tangent_mass(1, 1));
+  setLane(s.friction, l, c.friction), setLane(s.target_speed, l, c.target_speed);
+  setLane(s.normal_floor, l, c.normal_floor), setLane(s.present, l, 1.0);
+  setLane(s.normal_impulse, l, c.normal_impulse);
+  setLane(s.friction1, l, c.friction_impulse.x()), setLane(s.friction2, l, c.friction_impulse.y());
+  setLane(s.slip_squared, l, c.slip_squared);
+}
+
+// One sweep over every group in order, lanes of converged islands off; each island's largest change and
+// impulse gathered from its lanes.
+template <class T>
+RIGID_BODY_LANE_INLINE void sweepGroups(std::vector<ManifoldLanes<T>>& groups, LaneBodyVelocity* bodies,
+                                        const SolverContact* contacts, IslandSweeps& islands) {
+  for (ManifoldLanes<T>& g : groups) {
+    LaneMask<T> live{};
+    bool any = false;
+    for (std::size_t l = 0; l < g.lanes; ++l) {
+      const bool on = islands.live[g.island[l]] != 0;
+      setMaskLane(live, l, on);
+      any = any || on;
+    }
+    if (!any) continue;
+    T change{}, impulse{};
+    sweepGroup(g, bodies, live, contacts, change, impulse);
+    for (std::size_t l = 0; l < g.lanes; ++l) {
+      const std::uint32_t i = g.island[l];
+      islands.change[i] = std::max(islands.change[i], integrators::laneValue(change, l));
+      islands.impulse[i] = std::max(islands.impulse[i], integrators::laneValue(impulse, l));
+    }
+  }
+}
+
+// Sweeps until every island has converged or run out of sweeps; converged[i] as solveVelocities has it.
+template <class T>
+RIGID_BODY_LANE_INLINE void runSweeps(std::vector<ManifoldLanes<T>>& groups, LaneBodyVelocity* bodies,
+                                      const SolverContact* contacts, IslandSweeps& islands, char* converged,
+                                      int iterations) {
+  const std::size_t count = islands.allowed.size();
+  for (std::size_t sweep = 0;; ++sweep) {
+    bool any = false;
+    for (std::size_t i = 0; i < count; ++i) {
+      islands.live[i] = !converged[i] && sweep < islands.allowed[i];
+      any = any || islands.live[i];
+      islands.change[i] = 0.0, islands.impulse[i] = 0.0;
+    }
+    if (!any) return;
+    sweepGroups(groups, bodies, contacts, islands);
+    // To rounding within the sweeps asked for; beyond them, to a change of 1e-9 of the impulses.
+    const double tolerance = sweep < static_cast<std::size_t>(iterations) ? 1e-14 : 1e-9;
+    for (std::size_t i = 0; i < count; ++i) {
+      if (islands.live[i]) converged[i] = islands.change[i] <= tolerance * islands.impulse[i];
+    }
+  }
+}
+
+#if defined(__x86_64__) && !defined(__AVX__)
+#define RIGID_BODY_WIDE_CONTACT_LANES 1
+// The four-lane sweeps as 256-bit operations, for a build whose baseline (SSE2) splits each in two. Only
+// the lane code is inlined here; Eigen stays outside (frictionOntoDisc is a call).
+__attribute__((noinline, target("avx"))) void runSweepsAvx(std::vector<ManifoldLanes<Lanes>>& groups,
+                                                          LaneBodyVelocity* bodies, const SolverContact* contacts,
+                                                          IslandSweeps& islands, char* converged, int iterations) {
+  runSweeps(groups, bodies, contacts, islands, converged, iterations);
+}
+#endif
+
+}  // namespace
+
+bool wideContactLanesAvailable() {
+#ifdef RIGID_BODY_WIDE_CONTACT_LANES
+  static const bool available = __builtin_cpu_supports("avx");
+  return available;
+#else
+  return false;
+#endif
+}
+
+struct LaneContactSolver::Buffers {
+  std::vector<ManifoldLanes<double>> one;
+  std::vector<ManifoldLanes<Lanes>> four;
+  std::vector<LaneBodyVelocity> bodies;  // 0: the environment (a copy, at rest); then the block's bodies
+  IslandSweeps islands;
+};
+
+LaneContactSolver::LaneContactSolver() : buffers_(new Buffers) {}
+LaneContactSolver::~LaneContactSolver() = default;
+LaneContactSolver::LaneContactSolver(LaneContactSolver&&) noexcept = default;
+LaneContactSolver& LaneContactSolver::operator=(LaneContactSolver&&) noexcept = default;
+
+namespace {
+
+// The colouring's manifolds in groups of kLaneCount<T>, colour by colour; an overflow manifold alone.
+template <class T>
+void packGroups(const ManifoldColouring& colouring, const std::vector<SolverContact>& contacts,
+                std::size_t body_base, std::vector<ManifoldLanes<T>>& groups) {
+  constexpr std::size_t kWidth = kLaneCount<T>;
+  const auto local = [&](std::size_t s) { return static_cast<std::uint32_t>(s == kEnvironment ? 0 : s - body_base + 1); };
+  const std::vector<Manifold>& manifolds = colouring.manifolds();
+  groups.clear();
+  for (std::size_t colour = 0; colour <= ManifoldColouring::kColours; ++colour) {
+    const std::size_t width = colour == ManifoldColouring::kColours ? 1 : kWidth;
+    const std::size_t end = colouring.colourStart(colour + 1);
+    for (std::size_t m = colouring.colourStart(colour); m < end; m += width) {
+      ManifoldLanes<T>& g = groups.emplace_back();
+      g.lanes = static_cast<std::uint32_t>(std::min(width, end - m));
+      g.slots = 0;
+      for (std::size_t l = 0; l < g.lanes; ++l) {
+        const Manifold& manifold = manifolds[m + l];
+        const SolverContact& first = contacts[manifold.first];
+        g.body_a[l] = local(first.a), g.body_b[l] = local(first.b);
+        g.island[l] = manifold.island;
+        g.first_contact[l] = manifold.first;
+        g.slots = std::max(g.slots, manifold.count);
+        for (std::size_t p = 0; p < manifold.count; ++p) loadPoint(g.point[p], l, contacts[manifold.first + p]);
+      }
+    }
+  }
+}
+
+// The impulses back into the contacts.
+template <class T>
+void unpackGroups(const std::vector<ManifoldLanes<T>>& groups, std::vector<SolverContact>& contacts) {
+  for (const ManifoldLanes<T>& g : groups) {
+    for (std::size_t l = 0; l < g.lanes; ++l) {
+      for (std::size_t p = 0; p < g.slots; ++p) {
+        const PointLanes<T>& s = g.point[p];
+        if (!(integrators::laneValue(s.present, l) > 0.0)) break;
+        SolverContact& c = contacts[g.first_contact[l] + p];
+        c.normal_impulse = integrators::laneValue(s.normal_impulse, l);
+        c.friction_impulse = Eigen::Vector2d(integrators::laneValue(s.friction1, l), integrators::laneValue(s.friction2, l));
+        c.slip_squared = integrators::laneValue(s.slip_squared, l);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void LaneContactSolver::solve(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies,
+                              const SolveOptions& options, const SolveRange* islands, std::size_t count,
+                              char* converged, const LaneSettings& lanes) {
+  Buffers& buffers = *buffers_;
+  colouring_.colour(contacts, islands, count, bodies.size());
+  std::size_t body_base = bodies.size(), body_end = 0;
+  IslandSweeps& sweeps = buffers.islands;
+  sweeps.allowed.resize(count), sweeps.live.resize(count), sweeps.change.resize(count), sweeps.impulse.resize(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const SolveRange& range = islands[i];
+    body_base = std::min(body_base, std::max<std::size_t>(range.body_begin, 1));
+    body_end = std::max(body_end, range.body_end);
+    // solveVelocities' sweep count for this island.
+    const std::size_t contacts_in = range.contact_end - range.contact_begin;
+    const std::size_t shared = std::max(options.budget_contacts, contacts_in);
+    const std::size_t budget =
+        static_cast<std::size_t>(std::max(options.iterations, 0)) * std::max(options.sweep_budget_contacts, shared);
+    sweeps.allowed[i] = contacts_in == 0 ? 0 : budget / shared;
+    converged[i] = 0;
+  }
+  body_end = std::max(body_end, body_base);
+  // Only the islands' own bodies are read and written: other blocks' may lie between them, on other threads.
+  buffers.bodies.assign(body_end - body_base + 1, LaneBodyVelocity{{0, 0, 0}, {0, 0, 0}, 0.0});
+  for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t s = std::max<std::size_t>(islands[i].body_begin, 1); s < islands[i].body_end; ++s) {
+      LaneBodyVelocity& to = buffers.bodies[s - body_base + 1];
+      const SolverBody& from = bodies[s];
+      for (int j = 0; j < 3; ++j) to.v[j] = from.v[j], to.w[j] = from.w[j];
+      to.inverse_mass = from.inverse_mass;
+    }
+  }
+  if (lanes.lanes == 1) {
+    packGroups(colouring_, contacts, body_base, buffers.one);
+    runSweeps(buffers.one, buffers.bodies.data(), contacts.data(), sweeps, converged, options.iterations);
+    unpackGroups(buffers.one, contacts);
+  } else {
+    packGroups(colouring_, contacts, body_base, buffers.four);
+#ifdef RIGID_BODY_WIDE_CONTACT_LANES
+    if (lanes.wide_instructions && wideContactLanesAvailable()) {
+      runSweepsAvx(buffers.four, buffers.bodies.data(), contacts.data(), sweeps, converged, options.iterations);
+    } else {
+      runSweeps(buffers.four, buffers.bodies.data(), contacts.data(), sweeps, converged, options.iterations);
+    }
+#else
+    runSweeps(buffers.four, buffers.bodies.data(), contacts.data(), sweeps, converged, options.iterations);
+#endif
+    unpackGroups(buffers.four, contacts);
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t s = std::max<std::size_t>(islands[i].body_begin, 1); s < islands[i].body_end; ++s) {
+      const LaneBodyVelocity& from = buffers.bodies[s - body_base + 1];
+      bodies[s].v = Eigen::Vector3d(from.v[0], from.v[1], from.v[2]);
+      bodies[s].w = Eigen::Vector3d(from.w[0], from.w[1], from.w[2]);
+    }
+  }
+}
+
+std::vector<std::size_t> LaneContactSolver::sweepOrder() const {
+  std::vector<std::size_t> order;
+  for (const Manifold& m : colouring_.manifolds()) {
+    for (std::size_t p = 0; p < m.count; ++p) order.push_back(m.first + p);
+  }
+  return order;
+}
+
+}  // namespace contact
+}  // namespace rigid_body

@@ -1,0 +1,55 @@
+// The resting solve's velocity sweeps in vector lanes (docs/contact.md, "The solver's lanes"): the sequential
+// impulses of contact_solver.hpp's solveVelocities, swept colour by colour over the manifolds of a block of
+// islands (manifold_colouring.hpp), four manifolds side by side in the lanes of a vector, each lane solving
+// its manifold's points one after another. A lane computes what one manifold solved alone computes, with
+// the same operations in the same order, so the results are the same bits in four lanes as in one
+// (`lanes = 1`, the scalar form, a double per lane), and the same whatever islands share the block. The
+// readable solver swept over the same contacts in the same order (colour by colour) agrees to rounding.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "contact_solver.hpp"
+#include "manifold_colouring.hpp"
+
+namespace rigid_body {
+namespace contact {
+
+/// How the lane solver runs.
+struct LaneSettings {
+  std::size_t lanes = 4;          ///< manifolds per vector: 4, or 1 (one double per lane, the scalar form)
+  bool wide_instructions = true;  ///< four lanes as one AVX operation where the CPU has AVX (same bits)
+};
+
+/// Whether this CPU has the wide instructions (AVX) the lane solver can use (checked once).
+bool wideContactLanesAvailable();
+
+class LaneContactSolver {
+ public:
+  LaneContactSolver();
+  ~LaneContactSolver();
+  LaneContactSolver(LaneContactSolver&&) noexcept;
+  LaneContactSolver& operator=(LaneContactSolver&&) noexcept;
+
+  /// The velocity sweeps of `count` islands (ranges of the lists over disjoint runs of bodies, whose union
+  /// is one run), their contacts prepared by prepareContacts: each island sweeps until its own impulses
+  /// converge or its sweeps (as solveVelocities counts them) run out, colour by colour. Sets converged[i]
+  /// as solveVelocities returns it, each contact's impulses and slip_squared and each body's v and w (not
+  /// dP and dL: sumImpulses).
+  void solve(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options,
+             const SolveRange* islands, std::size_t count, char* converged, const LaneSettings& lanes);
+
+  /// The contacts of the islands of the last solve in the order it swept them (colour by colour): the order
+  /// in which the readable solver gets the same impulses to rounding.
+  std::vector<std::size_t> sweepOrder() const;
+
+ private:
+  struct Buffers;
+  std::unique_ptr<Buffers> buffers_;
+  ManifoldColouring colouring_;
+};
+
+}  // namespace contact
+}  // namespace rigid_body
