@@ -1,40 +1,40 @@
 #include "friction_disc.hpp"
 
-#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
 
 namespace rigid_body {
 namespace contact {
 
 // Coulomb's law at one point, given the sticking impulse f* outside the disc |f| ≤ L: the impulse on the disc
 // that leaves the least slip energy ½ s⁺ᵀ K⁻¹ s⁺ = ½ (f − f*)ᵀ K (f − f*), K the slip change per impulse
-// (docs/references.md, "Friction on the disc"). Its optimality condition K (f − f*) = −λ f says s⁺ = −λ f:
-// the impulse opposes the slip it leaves (maximal dissipation). So f = (K + λ)⁻¹ K f*, with λ ≥ 0 the root of
-// |f(λ)| = L, found by Newton's method on 1/|f(λ)| − 1/L (nearly linear in λ; from λ = 0 it rises
-// monotonically to the root, as for a trust region's secular equation, Moré & Sorensen 1983). Each point's
-// update then lowers the bodies' kinetic energy, so the sweeps descend to a sticking solution where one exists.
+// (docs/references.md §4.8). Its optimality condition K (f − f*) = −λ f says s⁺ = −λ f: the impulse opposes
+// the slip it leaves (maximal dissipation). So f(λ) = (K + λ)⁻¹ K f*, with λ ≥ 0 the root of |f(λ)| = L.
+// |f(λ)| falls monotonically in λ, and Newton's method on 1/|f(λ)| − 1/L (nearly linear in λ) rises
+// monotonically to the root from any λ below it (the secular equation of a trust region, Moré & Sorensen
+// 1983). It starts at a bound below the root, λ₀ = k_min (|f*|/L − 1) (§4.8: each eigen-component of f(λ)
+// shrinks by kᵢ/(kᵢ + λ) ≥ k_min/(k_min + λ)), which is the root itself where K is isotropic. Each step is a
+// 2 × 2 solve: with M = K + λ, f = M⁻¹ K f* and d|f|/dλ · |f| = f·f' = −fᵀ M⁻¹ f.
 Eigen::Vector2d ontoFrictionDisc(const Eigen::Vector2d& sticking, const Eigen::Matrix2d& response, double limit) {
   if (!(limit > 0.0)) return Eigen::Vector2d::Zero();
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen;
-  eigen.computeDirect(response);
-  const Eigen::Vector2d k = eigen.eigenvalues().cwiseMax(0.0);
-  const Eigen::Vector2d g = eigen.eigenvectors().transpose() * sticking;
-  const Eigen::Vector2d kg = k.cwiseProduct(g);
-  double lambda = 0.0;
-  Eigen::Vector2d f = kg;  // in the eigenbasis, at λ = 0 (= g where K is regular)
+  const double k00 = response(0, 0), k11 = response(1, 1), k01 = 0.5 * (response(0, 1) + response(1, 0));
+  const double half_trace = 0.5 * (k00 + k11), half_gap = 0.5 * (k00 - k11);
+  const double k_min = half_trace - std::sqrt(half_gap * half_gap + k01 * k01);
+  const Eigen::Vector2d kf(k00 * sticking.x() + k01 * sticking.y(), k01 * sticking.x() + k11 * sticking.y());
+  // A singular K (no slip response along a direction, so no impulse there) starts just above λ = 0.
+  double lambda = k_min > 0.0 ? std::max(0.0, k_min * (sticking.norm() / limit - 1.0)) : 1e-12 * half_trace;
+  Eigen::Vector2d f = Eigen::Vector2d::Zero();
   for (int i = 0; i < 40; ++i) {
-    double dr = 0.0;  // d|f|/dλ · |f|
-    for (int j = 0; j < 2; ++j) {
-      const double denominator = k[j] + lambda;
-      f[j] = denominator > 0.0 ? kg[j] / denominator : 0.0;  // no slip response along it: no impulse
-      if (denominator > 0.0) dr -= f[j] * f[j] / denominator;
-    }
+    const double m00 = k00 + lambda, m11 = k11 + lambda, det = m00 * m11 - k01 * k01;
+    if (!(det > 0.0)) break;  // K is zero: no friction can act
+    f = Eigen::Vector2d(m11 * kf.x() - k01 * kf.y(), m00 * kf.y() - k01 * kf.x()) / det;
     const double r = f.norm();
+    const double dr = -(m11 * f.x() * f.x() - 2.0 * k01 * f.x() * f.y() + m00 * f.y() * f.y()) / det;
     if (!(r > limit * (1.0 + 1e-15)) || !(dr < 0.0)) break;
     lambda += (1.0 / r - 1.0 / limit) * r * r * r / dr;
   }
   const double r = f.norm();
-  const Eigen::Vector2d on_disc = r > 0.0 ? Eigen::Vector2d(f * (limit / r)) : Eigen::Vector2d::Zero();
-  return eigen.eigenvectors() * on_disc;
+  return r > 0.0 ? Eigen::Vector2d(f * (limit / r)) : Eigen::Vector2d::Zero();
 }
 
 }  // namespace contact
