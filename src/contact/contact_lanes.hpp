@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 
 #include "contact_solver.hpp"
 #include "integrators/lane_math.hpp"
@@ -20,9 +21,65 @@ using integrators::kLaneCount;
 using integrators::Lanes;
 using integrators::Vec;
 
-/// A comparison's result: bool for one lane, a vector of 0 / −1 for Lanes.
+/// Eight doubles: two groups' worth of AVX lanes in one type, so that two manifolds' chains of dependent
+/// updates run side by side (one AVX-512 operation, or two AVX ones).
+typedef double EightLanes __attribute__((vector_size(64)));
+
+/// A comparison's result: bool for one lane, a vector of 0 / −1 for several.
 template <class T>
 using LaneMask = decltype(T() < T());
+
+// Lane access and the lanes' own std::max, sign test and selection, the same in one lane as in several.
+template <class T>
+RIGID_BODY_LANE_INLINE void setLane(T& v, std::size_t i, double value) {
+  if constexpr (std::is_same_v<T, double>) {
+    (void)i, v = value;
+  } else {
+    v[i] = value;
+  }
+}
+template <class T>
+RIGID_BODY_LANE_INLINE double laneValue(const T& v, std::size_t i) {
+  if constexpr (std::is_same_v<T, double>) {
+    return (void)i, v;
+  } else {
+    return v[i];
+  }
+}
+template <class M>
+RIGID_BODY_LANE_INLINE bool laneOn(const M& m, std::size_t i) {
+  if constexpr (std::is_same_v<M, bool>) {
+    return (void)i, m;
+  } else {
+    return m[i] != 0;
+  }
+}
+template <class M>
+RIGID_BODY_LANE_INLINE void setMaskLane(M& m, std::size_t i, bool on) {
+  if constexpr (std::is_same_v<M, bool>) {
+    (void)i, m = on;
+  } else {
+    m[i] = on ? -1 : 0;
+  }
+}
+template <class M>
+RIGID_BODY_LANE_INLINE bool anyLane(const M& m) {
+  if constexpr (std::is_same_v<M, bool>) {
+    return m;
+  } else {
+    bool any = false;
+    for (std::size_t i = 0; i < sizeof(M) / sizeof(m[0]); ++i) any = any || m[i] != 0;
+    return any;
+  }
+}
+template <class T>
+RIGID_BODY_LANE_INLINE T laneSelect(const LaneMask<T>& m, const T& a, const T& b) {
+  return m ? a : b;
+}
+template <class T>
+RIGID_BODY_LANE_INLINE void setVecLane(Vec<T>& to, std::size_t i, const Eigen::Vector3d& from) {
+  setLane(to.x, i, from.x()), setLane(to.y, i, from.y()), setLane(to.z, i, from.z());
+}
 
 /// A solver body's velocities and inverse mass, as the lanes gather and scatter them.
 struct LaneBodyVelocity {
@@ -30,10 +87,10 @@ struct LaneBodyVelocity {
 };
 
 /// One point slot of a group: the prepared quantities of SolverContact, a T across the lanes. Aligned for
-/// the wide instructions: a baseline (SSE2) build aligns four lanes to 16 bytes only, and the AVX code loads
-/// them as aligned 32-byte vectors.
+/// the widest instructions: a baseline (SSE2) build aligns a vector of lanes to 16 bytes only, and the AVX
+/// and AVX-512 code loads them as aligned 32- and 64-byte vectors.
 template <class T>
-struct alignas(32) PointLanes {
+struct alignas(64) PointLanes {
   Vec<T> n, t1, t2;
   Vec<T> cross_a[3], cross_b[3];        // r × d for d = n, t1, t2
   Vec<T> response_a[3], response_b[3];  // I⁻¹ (r × d)
@@ -45,7 +102,7 @@ struct alignas(32) PointLanes {
 
 /// Up to kLaneCount<T> manifolds of one colour (no two share a body but the environment).
 template <class T>
-struct alignas(32) ManifoldLanes {
+struct alignas(64) ManifoldLanes {
   static constexpr std::size_t kWidth = kLaneCount<T>;
   PointLanes<T> point[kMaxManifoldPoints];
   std::uint32_t body_a[kWidth], body_b[kWidth];  // indices into the block's LaneBodyVelocity (0: environment)
@@ -58,23 +115,14 @@ template <class T>
 RIGID_BODY_LANE_INLINE T dot(const Vec<T>& a, const Vec<T>& b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
 }
-// std::max's and a sign test's semantics, lane by lane (the same in one lane as in four).
-RIGID_BODY_LANE_INLINE double laneSelect(bool m, double a, double b) { return m ? a : b; }
-RIGID_BODY_LANE_INLINE Lanes laneSelect(LaneMask<Lanes> m, Lanes a, Lanes b) { return m ? a : b; }
 template <class T>
 RIGID_BODY_LANE_INLINE T laneMax(T a, T b) {
-  return laneSelect(a < b, b, a);
+  return laneSelect<T>(a < b, b, a);
 }
 template <class T>
 RIGID_BODY_LANE_INLINE T laneAbs(T a) {
-  return laneSelect(a < 0.0, -a, a);
+  return laneSelect<T>(a < 0.0, -a, a);
 }
-RIGID_BODY_LANE_INLINE bool laneOn(bool m, std::size_t) { return m; }
-RIGID_BODY_LANE_INLINE bool laneOn(LaneMask<Lanes> m, std::size_t i) { return m[i] != 0; }
-RIGID_BODY_LANE_INLINE bool anyLane(bool m) { return m; }
-RIGID_BODY_LANE_INLINE bool anyLane(LaneMask<Lanes> m) { return (m[0] | m[1] | m[2] | m[3]) != 0; }
-RIGID_BODY_LANE_INLINE void setMaskLane(bool& m, std::size_t, bool on) { m = on; }
-RIGID_BODY_LANE_INLINE void setMaskLane(LaneMask<Lanes>& m, std::size_t i, bool on) { m[i] = on ? -1 : 0; }
 
 /// The friction impulse on the disc of radius `limit` for a point whose sticking impulse (f1, f2) lies
 /// outside it (friction_disc.hpp), written to f1, f2. Out of line: it is scalar code with Eigen, and the
@@ -84,18 +132,18 @@ void frictionOntoDisc(const SolverContact& contact, double limit, double& f1, do
 template <class T>
 RIGID_BODY_LANE_INLINE void gatherVelocity(Vec<T>& v, Vec<T>& w, T& inverse_mass, const LaneBodyVelocity& body,
                                            std::size_t lane) {
-  integrators::setLane(v.x, lane, body.v[0]), integrators::setLane(v.y, lane, body.v[1]);
-  integrators::setLane(v.z, lane, body.v[2]);
-  integrators::setLane(w.x, lane, body.w[0]), integrators::setLane(w.y, lane, body.w[1]);
-  integrators::setLane(w.z, lane, body.w[2]);
-  integrators::setLane(inverse_mass, lane, body.inverse_mass);
+  setLane(v.x, lane, body.v[0]), setLane(v.y, lane, body.v[1]);
+  setLane(v.z, lane, body.v[2]);
+  setLane(w.x, lane, body.w[0]), setLane(w.y, lane, body.w[1]);
+  setLane(w.z, lane, body.w[2]);
+  setLane(inverse_mass, lane, body.inverse_mass);
 }
 template <class T>
 RIGID_BODY_LANE_INLINE void scatterVelocity(const Vec<T>& v, const Vec<T>& w, LaneBodyVelocity& body, std::size_t lane) {
-  body.v[0] = integrators::laneValue(v.x, lane), body.v[1] = integrators::laneValue(v.y, lane);
-  body.v[2] = integrators::laneValue(v.z, lane);
-  body.w[0] = integrators::laneValue(w.x, lane), body.w[1] = integrators::laneValue(w.y, lane);
-  body.w[2] = integrators::laneValue(w.z, lane);
+  body.v[0] = laneValue(v.x, lane), body.v[1] = laneValue(v.y, lane);
+  body.v[2] = laneValue(v.z, lane);
+  body.w[0] = laneValue(w.x, lane), body.w[1] = laneValue(w.y, lane);
+  body.w[2] = laneValue(w.z, lane);
 }
 
 /// One sweep of a group's points, slot by slot: in each lane solveVelocities' update of one point (normal,
@@ -115,7 +163,7 @@ RIGID_BODY_LANE_INLINE void sweepGroup(ManifoldLanes<T>& g, LaneBodyVelocity* bo
     const LaneMask<T> on = live & (s.present > 0.0);
     // Normal: v_n ≥ target, impulse ≥ the floor (a contact pushes, never pulls).
     const T v_n = dot(s.n, va - vb) + dot(s.cross_a[0], wa) - dot(s.cross_b[0], wb);
-    const T normal = laneSelect(on, laneMax(s.normal_floor, s.normal_impulse - s.normal_mass * (v_n - s.target_speed)),
+    const T normal = laneSelect<T>(on, laneMax(s.normal_floor, s.normal_impulse - s.normal_mass * (v_n - s.target_speed)),
                                 s.normal_impulse);
     const T dn = normal - s.normal_impulse;
     s.normal_impulse = normal;
@@ -125,7 +173,7 @@ RIGID_BODY_LANE_INLINE void sweepGroup(ManifoldLanes<T>& g, LaneBodyVelocity* bo
     const Vec<T> dv = va - vb;
     const T s1 = dot(s.t1, dv) + dot(s.cross_a[1], wa) - dot(s.cross_b[1], wb);
     const T s2 = dot(s.t2, dv) + dot(s.cross_a[2], wa) - dot(s.cross_b[2], wb);
-    s.slip_squared = laneSelect(on, s1 * s1 + s2 * s2, s.slip_squared);
+    s.slip_squared = laneSelect<T>(on, s1 * s1 + s2 * s2, s.slip_squared);
     T f1 = s.friction1 - (s.tangent_mass00 * s1 + s.tangent_mass01 * s2);
     T f2 = s.friction2 - (s.tangent_mass01 * s1 + s.tangent_mass11 * s2);
     const T limit = s.friction * normal;
@@ -133,12 +181,12 @@ RIGID_BODY_LANE_INLINE void sweepGroup(ManifoldLanes<T>& g, LaneBodyVelocity* bo
     if (anyLane(outside)) {
       for (std::size_t l = 0; l < g.lanes; ++l) {
         if (!laneOn(outside, l)) continue;
-        double d1 = integrators::laneValue(f1, l), d2 = integrators::laneValue(f2, l);
-        frictionOntoDisc(contacts[g.first_contact[l] + p], integrators::laneValue(limit, l), d1, d2);
-        integrators::setLane(f1, l, d1), integrators::setLane(f2, l, d2);
+        double d1 = laneValue(f1, l), d2 = laneValue(f2, l);
+        frictionOntoDisc(contacts[g.first_contact[l] + p], laneValue(limit, l), d1, d2);
+        setLane(f1, l, d1), setLane(f2, l, d2);
       }
     }
-    f1 = laneSelect(on, f1, s.friction1), f2 = laneSelect(on, f2, s.friction2);
+    f1 = laneSelect<T>(on, f1, s.friction1), f2 = laneSelect<T>(on, f2, s.friction2);
     const T df1 = f1 - s.friction1, df2 = f2 - s.friction2;
     s.friction1 = f1, s.friction2 = f2;
     const Vec<T> linear = df1 * s.t1 + df2 * s.t2;

@@ -1,6 +1,7 @@
 #include "lane_contact_solver.hpp"
 
 #include <algorithm>
+#include <type_traits>
 
 #include "contact_lanes.hpp"
 #include "friction_disc.hpp"
@@ -24,12 +25,11 @@ struct IslandSweeps {
 
 template <class T>
 void loadPoint(PointLanes<T>& s, std::size_t l, const SolverContact& c) {
-  using integrators::setLane;
-  setLane(s.n, l, c.n), setLane(s.t1, l, c.t1), setLane(s.t2, l, c.t2);
+  setVecLane(s.n, l, c.n), setVecLane(s.t1, l, c.t1), setVecLane(s.t2, l, c.t2);
   for (int j = 0; j < 3; ++j) {
-    setLane(s.cross_a[j], l, Eigen::Vector3d(c.cross_a.col(j))), setLane(s.cross_b[j], l, Eigen::Vector3d(c.cross_b.col(j)));
-    setLane(s.response_a[j], l, Eigen::Vector3d(c.response_a.col(j)));
-    setLane(s.response_b[j], l, Eigen::Vector3d(c.response_b.col(j)));
+    setVecLane(s.cross_a[j], l, Eigen::Vector3d(c.cross_a.col(j))), setVecLane(s.cross_b[j], l, Eigen::Vector3d(c.cross_b.col(j)));
+    setVecLane(s.response_a[j], l, Eigen::Vector3d(c.response_a.col(j)));
+    setVecLane(s.response_b[j], l, Eigen::Vector3d(c.response_b.col(j)));
   }
   setLane(s.normal_mass, l, c.normal_mass);
   setLane(s.tangent_mass00, l, c.tangent_mass(0, 0)), setLane(s.tangent_mass01, l, c.tangent_mass(0, 1));
@@ -59,8 +59,8 @@ RIGID_BODY_LANE_INLINE void sweepGroups(std::vector<ManifoldLanes<T>>& groups, L
     sweepGroup(g, bodies, live, contacts, change, impulse);
     for (std::size_t l = 0; l < g.lanes; ++l) {
       const std::uint32_t i = g.island[l];
-      islands.change[i] = std::max(islands.change[i], integrators::laneValue(change, l));
-      islands.impulse[i] = std::max(islands.impulse[i], integrators::laneValue(impulse, l));
+      islands.change[i] = std::max(islands.change[i], laneValue(change, l));
+      islands.impulse[i] = std::max(islands.impulse[i], laneValue(impulse, l));
     }
   }
 }
@@ -90,29 +90,46 @@ RIGID_BODY_LANE_INLINE void runSweeps(std::vector<ManifoldLanes<T>>& groups, Lan
 
 #if defined(__x86_64__) && !defined(__AVX__)
 #define RIGID_BODY_WIDE_CONTACT_LANES 1
-// The four-lane sweeps as 256-bit operations, for a build whose baseline (SSE2) splits each in two. Only
-// the lane code is inlined here; Eigen stays outside (frictionOntoDisc is a call).
-__attribute__((noinline, target("avx"))) void runSweepsAvx(std::vector<ManifoldLanes<Lanes>>& groups,
+// The sweeps in 256-bit (AVX) and 512-bit (AVX-512) operations, for a build whose baseline (SSE2) splits each
+// into 128-bit ones. Only the lane code is inlined here; Eigen stays outside (frictionOntoDisc is a call).
+template <class T>
+__attribute__((noinline, target("avx"))) void runSweepsAvx(std::vector<ManifoldLanes<T>>& groups,
                                                           LaneBodyVelocity* bodies, const SolverContact* contacts,
                                                           IslandSweeps& islands, char* converged, int iterations) {
   runSweeps(groups, bodies, contacts, islands, converged, iterations);
 }
+__attribute__((noinline, target("avx512f"))) void runSweepsAvx512(std::vector<ManifoldLanes<EightLanes>>& groups,
+                                                                 LaneBodyVelocity* bodies, const SolverContact* contacts,
+                                                                 IslandSweeps& islands, char* converged,
+                                                                 int iterations) {
+  runSweeps(groups, bodies, contacts, islands, converged, iterations);
+}
 #endif
+
+// The sweeps of one lane width, in the widest instructions allowed and available.
+template <class T>
+void runSweepsWidest(bool wide, std::vector<ManifoldLanes<T>>& groups, LaneBodyVelocity* bodies,
+                     const SolverContact* contacts, IslandSweeps& islands, char* converged, int iterations) {
+#ifdef RIGID_BODY_WIDE_CONTACT_LANES
+  if constexpr (std::is_same_v<T, EightLanes>) {
+    static const bool avx512 = __builtin_cpu_supports("avx512f");
+    if (wide && avx512) return runSweepsAvx512(groups, bodies, contacts, islands, converged, iterations);
+  }
+  if constexpr (!std::is_same_v<T, double>) {
+    static const bool avx = __builtin_cpu_supports("avx");
+    if (wide && avx) return runSweepsAvx(groups, bodies, contacts, islands, converged, iterations);
+  }
+#endif
+  (void)wide;
+  runSweeps(groups, bodies, contacts, islands, converged, iterations);
+}
 
 }  // namespace
-
-bool wideContactLanesAvailable() {
-#ifdef RIGID_BODY_WIDE_CONTACT_LANES
-  static const bool available = __builtin_cpu_supports("avx");
-  return available;
-#else
-  return false;
-#endif
-}
 
 struct LaneContactSolver::Buffers {
   std::vector<ManifoldLanes<double>> one;
   std::vector<ManifoldLanes<Lanes>> four;
+  std::vector<ManifoldLanes<EightLanes>> eight;
   std::vector<LaneBodyVelocity> bodies;  // 0: the environment (a copy, at rest); then the block's bodies
   IslandSweeps islands;
 };
@@ -159,11 +176,11 @@ void unpackGroups(const std::vector<ManifoldLanes<T>>& groups, std::vector<Solve
     for (std::size_t l = 0; l < g.lanes; ++l) {
       for (std::size_t p = 0; p < g.slots; ++p) {
         const PointLanes<T>& s = g.point[p];
-        if (!(integrators::laneValue(s.present, l) > 0.0)) break;
+        if (!(laneValue(s.present, l) > 0.0)) break;
         SolverContact& c = contacts[g.first_contact[l] + p];
-        c.normal_impulse = integrators::laneValue(s.normal_impulse, l);
-        c.friction_impulse = Eigen::Vector2d(integrators::laneValue(s.friction1, l), integrators::laneValue(s.friction2, l));
-        c.slip_squared = integrators::laneValue(s.slip_squared, l);
+        c.normal_impulse = laneValue(s.normal_impulse, l);
+        c.friction_impulse = Eigen::Vector2d(laneValue(s.friction1, l), laneValue(s.friction2, l));
+        c.slip_squared = laneValue(s.slip_squared, l);
       }
     }
   }
@@ -202,22 +219,18 @@ void LaneContactSolver::solve(std::vector<SolverContact>& contacts, std::vector<
       to.inverse_mass = from.inverse_mass;
     }
   }
+  const auto sweep = [&](auto& groups) {
+    packGroups(colouring_, contacts, body_base, groups);
+    runSweepsWidest(lanes.wide_instructions, groups, buffers.bodies.data(), contacts.data(), sweeps, converged,
+                    options.iterations);
+    unpackGroups(groups, contacts);
+  };
   if (lanes.lanes == 1) {
-    packGroups(colouring_, contacts, body_base, buffers.one);
-    runSweeps(buffers.one, buffers.bodies.data(), contacts.data(), sweeps, converged, options.iterations);
-    unpackGroups(buffers.one, contacts);
+    sweep(buffers.one);
+  } else if (lanes.lanes == 4) {
+    sweep(buffers.four);
   } else {
-    packGroups(colouring_, contacts, body_base, buffers.four);
-#ifdef RIGID_BODY_WIDE_CONTACT_LANES
-    if (lanes.wide_instructions && wideContactLanesAvailable()) {
-      runSweepsAvx(buffers.four, buffers.bodies.data(), contacts.data(), sweeps, converged, options.iterations);
-    } else {
-      runSweeps(buffers.four, buffers.bodies.data(), contacts.data(), sweeps, converged, options.iterations);
-    }
-#else
-    runSweeps(buffers.four, buffers.bodies.data(), contacts.data(), sweeps, converged, options.iterations);
-#endif
-    unpackGroups(buffers.four, contacts);
+    sweep(buffers.eight);
   }
   for (std::size_t i = 0; i < count; ++i) {
     for (std::size_t s = std::max<std::size_t>(islands[i].body_begin, 1); s < islands[i].body_end; ++s) {

@@ -19,12 +19,12 @@ namespace contact {
 
 /// How the lane solver runs.
 struct LaneSettings {
-  std::size_t lanes = 4;          ///< manifolds per vector: 4, or 1 (one double per lane, the scalar form)
-  bool wide_instructions = true;  ///< four lanes as one AVX operation where the CPU has AVX (same bits)
+  /// Manifolds per vector: 8 (two AVX groups side by side, or one AVX-512 vector), 4, or 1 (one double per
+  /// lane, the scalar form). The same bits with any.
+  std::size_t lanes = 8;
+  /// The lanes as AVX-512 or AVX operations where the CPU has them (the same bits as the baseline's).
+  bool wide_instructions = true;
 };
-
-/// Whether this CPU has the wide instructions (AVX) the lane solver can use (checked once).
-bool wideContactLanesAvailable();
 
 class LaneContactSolver {
  public:

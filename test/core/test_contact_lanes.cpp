@@ -1,6 +1,6 @@
 // The resting solve in vector lanes (docs/contact.md, "The solver's lanes"): the colouring never puts two
-// manifolds that share a body in one colour and sweeps every contact once; four lanes give the bits of one
-// lane, with and without the wide instructions, whatever islands share a block; and the readable solver
+// manifolds that share a body in one colour and sweeps every contact once; four and eight lanes give the
+// bits of one lane, with and without the wide instructions, whatever islands share a block; and the readable solver
 // swept over the same contacts in the same order gets the same impulses to rounding.
 #include <gtest/gtest.h>
 
@@ -192,23 +192,24 @@ Lists solvedInLanes(std::size_t lanes, bool wide, int iterations) {
   return lists;
 }
 
-TEST(ContactLanes, FourLanesGiveTheBitsOfOneWithAndWithoutWideInstructions) {
+TEST(ContactLanes, FourAndEightLanesGiveTheBitsOfOneWithAndWithoutWideInstructions) {
   for (const int iterations : {3, 20}) {  // islands stopped unconverged; and most converged, some not
     const Lists one = solvedInLanes(1, false, iterations);
     bool some_on_the_disc = false;
-    for (const auto& [lanes, wide] : {std::pair<std::size_t, bool>{4, false}, {4, true}}) {
-      const Lists four = solvedInLanes(lanes, wide, iterations);
+    for (const auto& [lanes, wide] : {std::pair<std::size_t, bool>{4, false}, {4, true}, {8, false}, {8, true}}) {
+      const Lists other = solvedInLanes(lanes, wide, iterations);
       for (std::size_t s = 0; s < one.bodies.size(); ++s) {
         for (Eigen::Vector3d SolverBody::*field : {&SolverBody::v, &SolverBody::w, &SolverBody::dP, &SolverBody::dL,
                                                    &SolverBody::dx, &SolverBody::dtheta}) {
-          EXPECT_TRUE(sameBits(one.bodies[s].*field, four.bodies[s].*field)) << "body " << s << " wide " << wide;
+          EXPECT_TRUE(sameBits(one.bodies[s].*field, other.bodies[s].*field))
+              << "body " << s << ", " << lanes << " lanes, wide " << wide;
         }
       }
       for (std::size_t k = 0; k < one.contacts.size(); ++k) {
-        const SolverContact &a = one.contacts[k], &b = four.contacts[k];
+        const SolverContact &a = one.contacts[k], &b = other.contacts[k];
         EXPECT_TRUE(a.normal_impulse == b.normal_impulse && a.friction_impulse == b.friction_impulse &&
                     a.slip_squared == b.slip_squared)
-            << "contact " << k << " wide " << wide;
+            << "contact " << k << ", " << lanes << " lanes, wide " << wide;
         some_on_the_disc = some_on_the_disc ||
                            a.friction_impulse.norm() > (1.0 - 1e-9) * a.friction * a.normal_impulse && a.normal_impulse > 0.0;
       }
