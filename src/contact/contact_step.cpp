@@ -82,7 +82,11 @@ std::uint64_t ContactStep::pairKey(std::size_t a, std::size_t b) const {
 }
 
 bool ContactStep::wasTouching(std::uint64_t key) const {
-  return std::binary_search(touching_.begin(), touching_.end(), key);
+  if (key != touching_memo_key_) {
+    touching_memo_ = std::binary_search(touching_.begin(), touching_.end(), key);
+    touching_memo_key_ = key;
+  }
+  return touching_memo_;
 }
 
 ContactPartner ContactStep::partner(std::size_t object) const {
@@ -160,9 +164,11 @@ void ContactStep::restart(const std::vector<State>& states) {
   detectPoints();
   touching_.clear();
   warm_.clear();
+  warm_memo_key_ = ~std::uint64_t{0};
   for (const ContactPoint& point : points_) touching_.push_back(pairKey(point.a, point.b));
   std::sort(touching_.begin(), touching_.end());
   touching_.erase(std::unique(touching_.begin(), touching_.end()), touching_.end());
+  touching_memo_key_ = ~std::uint64_t{0};
   for (auto& list : contacts_) list.clear();
   impacts_.clear();
   statistics_ = ContactStatistics();
@@ -239,7 +245,9 @@ void ContactStep::stepWhole(SceneBodies& bodies, const std::vector<char>& runnin
     for (auto& list : contacts_) list.clear();
     ++statistics_.refused_steps;
     touching_.clear();
+    touching_memo_key_ = ~std::uint64_t{0};
     warm_.clear();
+    warm_memo_key_ = ~std::uint64_t{0};
   }
 }
 
@@ -323,9 +331,17 @@ Eigen::Vector3d ContactStep::localPoint(const ContactPoint& point, const SceneBo
 
 const ContactStep::WarmPoint* ContactStep::warmStart(SolverContact& c, const ContactPoint& point,
                                                      const SceneBodies& bodies) const {
-  WarmPoint probe{};
-  probe.key = pairKey(point.a, point.b);
-  const auto range = std::equal_range(warm_.begin(), warm_.end(), probe);
+  const std::uint64_t key = pairKey(point.a, point.b);
+  if (key != warm_memo_key_) {
+    WarmPoint probe{};
+    probe.key = key;
+    const auto found = std::equal_range(warm_.begin(), warm_.end(), probe);
+    warm_memo_key_ = key;
+    warm_memo_begin_ = static_cast<std::size_t>(found.first - warm_.begin());
+    warm_memo_end_ = static_cast<std::size_t>(found.second - warm_.begin());
+  }
+  const auto range = std::make_pair(warm_.begin() + static_cast<std::ptrdiff_t>(warm_memo_begin_),
+                                    warm_.begin() + static_cast<std::ptrdiff_t>(warm_memo_end_));
   if (range.first == range.second) return nullptr;
   const WarmPoint* best = nullptr;
   if (point.feature >= 0) {  // a half-space contact: the same corner of the same body
@@ -334,10 +350,10 @@ const ContactStep::WarmPoint* ContactStep::warmStart(SolverContact& c, const Con
     }
   } else {
     const Eigen::Vector3d local = localPoint(point, bodies);
-    double best_distance = kWarmStartMatch;
+    double best_squared = kWarmStartMatch * kWarmStartMatch;
     for (auto it = range.first; it != range.second; ++it) {
-      const double distance = (it->local - local).norm();
-      if (distance < best_distance) best = &*it, best_distance = distance;
+      const double squared = (it->local - local).squaredNorm();
+      if (squared < best_squared) best = &*it, best_squared = squared;
     }
   }
   if (best == nullptr) return nullptr;
@@ -389,6 +405,7 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
   for (const ContactPoint* point : solver_points_) touching_.push_back(pairKey(point->a, point->b));
   std::sort(touching_.begin(), touching_.end());
   touching_.erase(std::unique(touching_.begin(), touching_.end()), touching_.end());
+  touching_memo_key_ = ~std::uint64_t{0};
   if (recording_) {
     for (std::size_t k = 0; k < contacts_.size(); ++k) {
       if (!sleep_.asleep(k)) contacts_[k].clear();  // a sleeping body reports its contacts as it fell asleep
@@ -397,6 +414,7 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
   if (solver_contacts_.empty()) {
     warm_.erase(std::remove_if(warm_.begin(), warm_.end(), [&](const WarmPoint& w) { return !sleepingPair(w.key); }),
                 warm_.end());
+    warm_memo_key_ = ~std::uint64_t{0};
     for (std::size_t s = 1; s < solver_bodies_.size(); ++s) solver_of_[solver_body_of_[s]] = kUnassigned;
     return;
   }
@@ -467,8 +485,14 @@ void ContactStep::rememberContacts(const SceneBodies& bodies, double h) {
       if (sleepingPair(w.key)) warm_next_.push_back(w);  // kept for when the island wakes
     }
   }
-  std::sort(warm_next_.begin(), warm_next_.end());
-  warm_.swap(warm_next_);
+  // By pair, each pair's points in their order: sorted as (key, position) pairs and gathered, not moved
+  // about whole (a warm point is 14 doubles).
+  warm_order_.clear();
+  for (std::size_t i = 0; i < warm_next_.size(); ++i) warm_order_.emplace_back(warm_next_[i].key, i);
+  std::sort(warm_order_.begin(), warm_order_.end());
+  warm_.clear();
+  for (const auto& [key, i] : warm_order_) warm_.push_back(warm_next_[i]);
+  warm_memo_key_ = ~std::uint64_t{0};
 }
 
 }  // namespace contact

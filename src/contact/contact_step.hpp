@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "collision_world.hpp"
@@ -182,6 +183,10 @@ class ContactStep {
   std::vector<State> start_;
   std::vector<ContactPoint> points_, pair_points_;
   std::vector<std::uint64_t> touching_, engaged_;
+  // wasTouching's last answer: a pair's points follow each other, and each asks it several times. Reset
+  // wherever touching_ changes.
+  mutable std::uint64_t touching_memo_key_ = ~std::uint64_t{0};
+  mutable bool touching_memo_ = false;
   std::vector<int> engagement_;             // engaged pairs per colliding body
   std::vector<Candidate> candidates_;
   std::vector<SolverBody> solver_bodies_;
@@ -212,6 +217,10 @@ class ContactStep {
   Eigen::Vector3d inObjectFrame(std::size_t object, const Eigen::Vector3d& p_W, const SceneBodies& bodies) const;
   Eigen::Vector3d inWorld(std::size_t object, const Eigen::Vector3d& local, const SceneBodies& bodies) const;
   std::vector<WarmPoint> warm_, warm_next_;
+  std::vector<std::pair<std::uint64_t, std::size_t>> warm_order_;  // scratch of rememberContacts
+  // warmStart's last pair and its run of warm_ (as wasTouching's memo); reset wherever warm_ changes.
+  mutable std::uint64_t warm_memo_key_ = ~std::uint64_t{0};
+  mutable std::size_t warm_memo_begin_ = 0, warm_memo_end_ = 0;
   // Per solver contact: the anchors it carries on a and on b (in those objects' frames); zeros if not anchored.
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> solver_anchors_;
 };
