@@ -31,6 +31,13 @@ inline void applyImpulse(SolverBody& a, SolverBody& b, const SolverContact& c, c
 
 SolverBody environmentBody() { return SolverBody(); }
 
+std::size_t allowedSweeps(const SolveOptions& options, std::size_t contacts) {
+  const std::size_t shared = std::max(options.budget_contacts, contacts);
+  const std::size_t budget =
+      static_cast<std::size_t>(std::max(options.iterations, 0)) * std::max(options.sweep_budget_contacts, shared);
+  return contacts == 0 ? 0 : budget / shared;
+}
+
 Eigen::Vector3d relativeVelocity(const SolverContact& c, const std::vector<SolverBody>& bodies) {
   const SolverBody& a = bodies[c.a];
   const SolverBody& b = bodies[c.b];
@@ -85,11 +92,7 @@ bool solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBod
 bool solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options,
                      const SolveRange& range) {
   bool converged = false;
-  const std::size_t count = range.contact_end - range.contact_begin;
-  const std::size_t shared = std::max(options.budget_contacts, count);
-  const std::size_t budget =
-      static_cast<std::size_t>(std::max(options.iterations, 0)) * std::max(options.sweep_budget_contacts, shared);
-  const std::size_t sweeps = count == 0 ? 0 : budget / shared;
+  const std::size_t sweeps = allowedSweeps(options, range.contact_end - range.contact_begin);
   for (std::size_t iteration = 0; iteration < sweeps && !converged; ++iteration) {
     double largest_change = 0.0, largest_impulse = 0.0;
     for (std::size_t k = range.contact_begin; k < range.contact_end; ++k) {

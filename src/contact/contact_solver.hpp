@@ -78,6 +78,10 @@ struct SolveOptions {
   double dt = 0.0;                      ///< > 0: a separated contact (separation > 0) may close at separation/dt
 };
 
+/// How many sweeps a solve of `contacts` contacts may take (the iterations, and beyond them the small
+/// scene's budget: SolveOptions::sweep_budget_contacts and budget_contacts); 0 for no contacts.
+std::size_t allowedSweeps(const SolveOptions& options, std::size_t contacts);
+
 /// A solver body for the environment, to put first in the bodies' list.
 SolverBody environmentBody();
 

@@ -188,37 +188,51 @@ void unpackGroups(const std::vector<ManifoldLanes<T>>& groups, std::vector<Solve
 
 }  // namespace
 
+namespace {
+
+// Each island's solve copies its bodies' velocities into the block's store (0: the environment, at rest),
+// and back. Only the islands' own bodies are read and written: other blocks' may lie between them, on
+// other threads.
+void gatherBodies(const std::vector<SolverBody>& bodies, const SolveRange* islands, std::size_t count,
+                  std::size_t base, std::vector<LaneBodyVelocity>& store) {
+  for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t s = std::max<std::size_t>(islands[i].body_begin, 1); s < islands[i].body_end; ++s) {
+      LaneBodyVelocity& to = store[s - base + 1];
+      for (int j = 0; j < 3; ++j) to.v[j] = bodies[s].v[j], to.w[j] = bodies[s].w[j];
+      to.inverse_mass = bodies[s].inverse_mass;
+    }
+  }
+}
+void scatterBodies(const std::vector<LaneBodyVelocity>& store, const SolveRange* islands, std::size_t count,
+                   std::size_t base, std::vector<SolverBody>& bodies) {
+  for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t s = std::max<std::size_t>(islands[i].body_begin, 1); s < islands[i].body_end; ++s) {
+      const LaneBodyVelocity& from = store[s - base + 1];
+      bodies[s].v = Eigen::Vector3d(from.v[0], from.v[1], from.v[2]);
+      bodies[s].w = Eigen::Vector3d(from.w[0], from.w[1], from.w[2]);
+    }
+  }
+}
+
+}  // namespace
+
 void LaneContactSolver::solve(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies,
                               const SolveOptions& options, const SolveRange* islands, std::size_t count,
                               char* converged, const LaneSettings& lanes) {
   Buffers& buffers = *buffers_;
   colouring_.colour(contacts, islands, count, bodies.size());
-  std::size_t body_base = bodies.size(), body_end = 0;
   IslandSweeps& sweeps = buffers.islands;
   sweeps.allowed.resize(count), sweeps.live.resize(count), sweeps.change.resize(count), sweeps.impulse.resize(count);
+  std::size_t body_base = bodies.size(), body_end = 0;
   for (std::size_t i = 0; i < count; ++i) {
-    const SolveRange& range = islands[i];
-    body_base = std::min(body_base, std::max<std::size_t>(range.body_begin, 1));
-    body_end = std::max(body_end, range.body_end);
-    // solveVelocities' sweep count for this island.
-    const std::size_t contacts_in = range.contact_end - range.contact_begin;
-    const std::size_t shared = std::max(options.budget_contacts, contacts_in);
-    const std::size_t budget =
-        static_cast<std::size_t>(std::max(options.iterations, 0)) * std::max(options.sweep_budget_contacts, shared);
-    sweeps.allowed[i] = contacts_in == 0 ? 0 : budget / shared;
+    body_base = std::min(body_base, std::max<std::size_t>(islands[i].body_begin, 1));
+    body_end = std::max(body_end, islands[i].body_end);
+    sweeps.allowed[i] = allowedSweeps(options, islands[i].contact_end - islands[i].contact_begin);
     converged[i] = 0;
   }
   body_end = std::max(body_end, body_base);
-  // Only the islands' own bodies are read and written: other blocks' may lie between them, on other threads.
   buffers.bodies.assign(body_end - body_base + 1, LaneBodyVelocity{{0, 0, 0}, {0, 0, 0}, 0.0});
-  for (std::size_t i = 0; i < count; ++i) {
-    for (std::size_t s = std::max<std::size_t>(islands[i].body_begin, 1); s < islands[i].body_end; ++s) {
-      LaneBodyVelocity& to = buffers.bodies[s - body_base + 1];
-      const SolverBody& from = bodies[s];
-      for (int j = 0; j < 3; ++j) to.v[j] = from.v[j], to.w[j] = from.w[j];
-      to.inverse_mass = from.inverse_mass;
-    }
-  }
+  gatherBodies(bodies, islands, count, body_base, buffers.bodies);
   const auto sweep = [&](auto& groups) {
     packGroups(colouring_, contacts, body_base, groups);
     runSweepsWidest(lanes.wide_instructions, groups, buffers.bodies.data(), contacts.data(), sweeps, converged,
@@ -232,13 +246,7 @@ void LaneContactSolver::solve(std::vector<SolverContact>& contacts, std::vector<
   } else {
     sweep(buffers.eight);
   }
-  for (std::size_t i = 0; i < count; ++i) {
-    for (std::size_t s = std::max<std::size_t>(islands[i].body_begin, 1); s < islands[i].body_end; ++s) {
-      const LaneBodyVelocity& from = buffers.bodies[s - body_base + 1];
-      bodies[s].v = Eigen::Vector3d(from.v[0], from.v[1], from.v[2]);
-      bodies[s].w = Eigen::Vector3d(from.w[0], from.w[1], from.w[2]);
-    }
-  }
+  scatterBodies(buffers.bodies, islands, count, body_base, bodies);
 }
 
 std::vector<std::size_t> LaneContactSolver::sweepOrder() const {

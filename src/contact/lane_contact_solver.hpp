@@ -19,8 +19,8 @@ namespace contact {
 
 /// How the lane solver runs.
 struct LaneSettings {
-  /// Manifolds per vector: 8 (two AVX groups side by side, or one AVX-512 vector), 4, or 1 (one double per
-  /// lane, the scalar form). The same bits with any.
+  /// Manifolds per vector: 1 (one double per lane, the scalar form), 4, or otherwise 8 (two AVX groups side
+  /// by side, or one AVX-512 vector). The same bits with any.
   std::size_t lanes = 8;
   /// The lanes as AVX-512 or AVX operations where the CPU has them (the same bits as the baseline's).
   bool wide_instructions = true;
