@@ -20,9 +20,6 @@ const CollisionShape* CollisionWorld::facedShape(std::size_t object, const HullF
                                                  const Eigen::Isometry3d** X_WS) const {
   const bool body = isBody(object);
   const CollisionShape& shape = body ? impl_->body_shapes[object] : impl_->environment_shapes[object - bodyCount()];
-  const bool faced = shape.type == ShapeType::kBox || shape.type == ShapeType::kCylinder ||
-                     shape.type == ShapeType::kCapsule || (shape.type == ShapeType::kMesh && body);
-  if (!faced) return nullptr;
   *hull = shape.type == ShapeType::kMesh ? &impl_->hull_faces[object] : nullptr;
   *X_WS = body ? &impl_->shape_poses[object] : &shape.pose;
   return &shape;
@@ -43,10 +40,14 @@ bool CollisionWorld::addFacePoints(const btPersistentManifold& manifold, double 
 bool CollisionWorld::addFacePoints(const ContactPoint& query, double max_distance, std::vector<ContactPoint>& points) {
   const HullFaces *hull_a = nullptr, *hull_b = nullptr;
   const Eigen::Isometry3d *X_WA = nullptr, *X_WB = nullptr;
+  const btCollisionObject* object_a = impl_->objects[query.a].get();  // null for a half-space
+  const btCollisionObject* object_b = impl_->objects[query.b].get();
+  if (object_a == nullptr || object_b == nullptr ||
+      !faceClippedPair(object_a->getCollisionShape()->getShapeType(), object_b->getCollisionShape()->getShapeType())) {
+    return false;
+  }
   const CollisionShape* shape_a = facedShape(query.a, &hull_a, &X_WA);
   const CollisionShape* shape_b = facedShape(query.b, &hull_b, &X_WB);
-  if (shape_a == nullptr || shape_b == nullptr) return false;
-  if (shape_a->type == ShapeType::kBox && shape_b->type == ShapeType::kBox) return false;  // btBoxBoxDetector's
   supportingFace(*shape_a, hull_a, *X_WA, -query.normal, impl_->face_a);
   supportingFace(*shape_b, hull_b, *X_WB, query.normal, impl_->face_b);
   const std::size_t first = points.size();

@@ -83,8 +83,8 @@ class CollisionWorld {
  private:
   double planeContacts(std::size_t body, std::size_t plane_object, double max_distance,
                        std::vector<ContactPoint>& points) const;
-  /// An object whose faces give its contact points (a box, cylinder, capsule or a body's hull), with its
-  /// hull's faces (kMesh) and its pose; null for the others (spheres, planes, triangle meshes).
+  /// The shape of an object whose faces give its contact points (faceClippedPair in collision_world_impl.hpp
+  /// decides which), with its hull's faces (kMesh) and its pose.
   const CollisionShape* facedShape(std::size_t object, const HullFaces** hull, const Eigen::Isometry3d** X_WS) const;
   /// A pair's points by face clipping from the normal of its one query's point (face_manifold.hpp), or of
   /// its manifold's deepest; false, adding nothing, where the pair's shapes or faces do not make them.

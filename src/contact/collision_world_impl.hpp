@@ -44,6 +44,18 @@ inline ContactPoint pointFrom(const btManifoldPoint& p, const btCollisionObject*
   return point;
 }
 
+// Which pairs face clipping serves (face_manifold.hpp), by Bullet's shape types: both shapes with faces to
+// clip (a box, a cylinder's ends and side, a capsule's segment, a body's hull), except box–box, which keeps
+// btBoxBoxDetector (a face's points in one pass). The one rule for the query's reach below and for
+// CollisionWorld::addFacePoints.
+inline bool facedType(int type) {
+  return type == BOX_SHAPE_PROXYTYPE || type == CYLINDER_SHAPE_PROXYTYPE || type == CAPSULE_SHAPE_PROXYTYPE ||
+         type == CONVEX_HULL_SHAPE_PROXYTYPE;
+}
+inline bool faceClippedPair(int type_a, int type_b) {
+  return facedType(type_a) && facedType(type_b) && !(type_a == BOX_SHAPE_PROXYTYPE && type_b == BOX_SHAPE_PROXYTYPE);
+}
+
 // How much farther than the near distance a pair's one query must look for face clipping to find what is
 // within it [m]: a box's and a cylinder's collision margins round their edges and corners inside them, so
 // GJK sees such an edge only once the exact edge is up to a margin deep (a box's edge tilted 20° with a
@@ -52,11 +64,7 @@ inline ContactPoint pointFrom(const btManifoldPoint& p, const btCollisionObject*
 // capsule's margin is its radius, which GJK treats exactly; a hull has none).
 inline double queryReach(const btCollisionObject& a, const btCollisionObject& b) {
   const int type_a = a.getCollisionShape()->getShapeType(), type_b = b.getCollisionShape()->getShapeType();
-  const auto clipped = [](int type) {
-    return type == BOX_SHAPE_PROXYTYPE || type == CYLINDER_SHAPE_PROXYTYPE || type == CAPSULE_SHAPE_PROXYTYPE ||
-           type == CONVEX_HULL_SHAPE_PROXYTYPE;
-  };
-  if (!clipped(type_a) || !clipped(type_b) || (type_a == BOX_SHAPE_PROXYTYPE && type_b == BOX_SHAPE_PROXYTYPE)) return 0.0;
+  if (!faceClippedPair(type_a, type_b)) return 0.0;
   const auto rounding = [](const btCollisionObject& object, int type) {
     return type == BOX_SHAPE_PROXYTYPE || type == CYLINDER_SHAPE_PROXYTYPE ? object.getCollisionShape()->getMargin() : 0.0;
   };
