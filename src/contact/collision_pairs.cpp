@@ -64,15 +64,16 @@ bool CollisionWorld::addFacePoints(const ContactPoint& query, double max_distanc
 }
 
 double CollisionWorld::planeContacts(std::size_t body, std::size_t plane_object, double max_distance,
-                                     std::vector<ContactPoint>& points) const {
+                                     std::vector<ContactPoint>& points, double beyond) const {
   const Impl::Plane* plane = &impl_->planes[static_cast<std::size_t>(impl_->plane_of_object[plane_object])];
   double smallest = max_distance;
   const Eigen::Vector3d& n = plane->normal;
   planeFeatures(impl_->body_shapes[body], impl_->shape_poses[body], n, [&](int feature, const Eigen::Vector3d& x) {
     const double distance = n.dot(x) - plane->offset;
     smallest = std::min(smallest, distance);
-    if (distance > max_distance) return;
+    if (distance > max_distance || distance <= beyond) return;
     ContactPoint point;
+    point.speculative = beyond > -1.0 / 0.0;
     point.a = body;
     point.b = plane_object;
     point.on_a = x;

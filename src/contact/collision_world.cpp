@@ -115,7 +115,8 @@ void CollisionWorld::bounds(std::size_t body, Eigen::Vector3d& low, Eigen::Vecto
   high = fromBt(hi);
 }
 
-void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distance) {
+void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distance, double speculative_distance,
+                            const std::vector<char>* moving) {
   points.clear();
   btCollisionDispatcher& dispatcher = impl_->dispatcher;
   // Each step's manifold is made afresh: Bullet's persistence drops the points of a sliding face when they
@@ -128,10 +129,20 @@ void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distan
   }
   impl_->world.performDiscreteCollisionDetection();
   impl_->broadphase.m_deferedcollide = false;  // paired once as a whole; from now on as objects move
+  // A pair (or a body on a half-space) with a point within max_distance, one of whose bodies moves: its
+  // faces may hold more points that arrive within the step.
+  const bool speculative = speculative_distance > max_distance && moving != nullptr;
+  const auto moves = [&](std::size_t object) { return isBody(object) && (*moving)[object] != 0; };
+  const auto partial = [&](std::size_t first) {
+    return speculative && points.size() > first && (moves(points[first].a) || moves(points[first].b));
+  };
   for (int m = 0; m < dispatcher.getNumManifolds(); ++m) {
     btPersistentManifold* manifold = dispatcher.getManifoldByIndexInternal(m);
-    if (addFacePoints(*manifold, max_distance, points)) continue;
     const std::size_t first = points.size();
+    if (addFacePoints(*manifold, max_distance, points)) {
+      if (partial(first)) addSpeculativePoints(first, max_distance, speculative_distance, max_distance, points);
+      continue;
+    }
     for (int c = 0; c < manifold->getNumContacts(); ++c) {
       const btManifoldPoint& p = manifold->getContactPoint(c);
       if (p.getDistance() > max_distance) continue;
@@ -144,6 +155,7 @@ void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distan
         points.push_back(point);
       }
     }
+    if (partial(first)) addSpeculativePoints(first, max_distance, speculative_distance, 0.0, points);
   }
   // A half-space meets a body only if the body's bounding sphere reaches it: one dot product per plane and
   // body before any feature is looked at.
@@ -153,7 +165,9 @@ void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distan
     const double reach = impl_->body_reach[body] + max_distance;
     for (const Impl::Plane& plane : impl_->planes) {
       if (plane.normal.dot(origin) - plane.offset > reach) continue;
+      const std::size_t first = points.size();
       planeContacts(body, plane.object, max_distance, points);
+      if (partial(first)) planeContacts(body, plane.object, speculative_distance, points, max_distance);
     }
   }
 }

@@ -30,6 +30,9 @@ struct ContactPoint {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< from b towards a, unit
   double distance = 0.0;                              ///< signed: < 0 when penetrating [m]
   int feature = -1;  ///< against a half-space: which feature of the body's shape (the same from step to step)
+  /// Farther than detect's max_distance, from a pair touching within it: a point of the pair's faces that
+  /// may arrive within the step (docs/contact.md, step 2, "speculative points").
+  bool speculative = false;
 };
 
 class CollisionWorld {
@@ -56,8 +59,12 @@ class CollisionWorld {
   void bounds(std::size_t body, Eigen::Vector3d& low, Eigen::Vector3d& high) const;
 
   /// Broad and narrow phase on the poses as set: every contact point no farther apart than `max_distance`
-  /// goes to `points` (cleared first), made afresh (no memory of the last call).
-  void detect(std::vector<ContactPoint>& points, double max_distance);
+  /// goes to `points` (cleared first), made afresh (no memory of the last call). A pair with such a point
+  /// whose shapes have faces (boxes, cylinders, capsules, hulls; a body on a half-space), and one of whose
+  /// bodies is `moving` (per body: its points may close more than max_distance within the step), also
+  /// gives the points of its faces up to `speculative_distance` apart, marked speculative, after its others.
+  void detect(std::vector<ContactPoint>& points, double max_distance, double speculative_distance = 0.0,
+              const std::vector<char>* moving = nullptr);
 
   /// Whether an environment object is a half-space (handled here in closed form, not by Bullet).
   bool isPlane(std::size_t object) const;
@@ -81,8 +88,16 @@ class CollisionWorld {
   static void tangentBasis(const Eigen::Vector3d& normal, Eigen::Vector3d& t1, Eigen::Vector3d& t2);
 
  private:
-  double planeContacts(std::size_t body, std::size_t plane_object, double max_distance,
-                       std::vector<ContactPoint>& points) const;
+  /// The body's features within max_distance of the half-space (and beyond `beyond`: those are marked
+  /// speculative); returns the smallest distance, or max_distance.
+  double planeContacts(std::size_t body, std::size_t plane_object, double max_distance, std::vector<ContactPoint>& points,
+                       double beyond = -1.0 / 0.0) const;
+  /// A pair's speculative points: points[first…] are the pair's, at least one within max_distance. Its
+  /// faces' points farther apart than `beyond` are added (those within max_distance as ordinary points):
+  /// max_distance for a pair whose points came from face clipping, 0 for a box pair (its detector gives
+  /// penetrating points only).
+  void addSpeculativePoints(std::size_t first, double max_distance, double speculative_distance, double beyond,
+                            std::vector<ContactPoint>& points);
   /// The shape of an object whose faces give its contact points (faceClippedPair in collision_world_impl.hpp
   /// decides which), with its hull's faces (kMesh) and its pose.
   const CollisionShape* facedShape(std::size_t object, const HullFaces** hull, const Eigen::Isometry3d** X_WS) const;

@@ -158,6 +158,7 @@ struct CollisionWorld::Impl {
   std::vector<CollisionShape> environment_shapes;  // without their triangles: what face clipping reads
   SupportFace face_a, face_b;                  // scratch of the face clipping
   std::vector<ContactPoint> pair_points, clipped_points;  // scratch of pairDistance() (points it returns to no one)
+  std::vector<ContactPoint> speculative_points;           // scratch of addSpeculativePoints()
 
   Impl() {
     // A face resting on a face needs several points in one pass. Convex pairs get them by face clipping

@@ -102,7 +102,13 @@ class ContactStep {
   ContactPartner partner(std::size_t object) const;
   ContactMaterial combined(std::size_t a, std::size_t b) const;
   void placeAll(const std::vector<State>& states);
-  void detectPoints();
+  /// The points at the poses as placed; with the bodies and the step, pairs touching within the slop with
+  /// a body that moves add their speculative points (speculativeDistance).
+  void detectPoints(const SceneBodies* bodies = nullptr, double h = 0.0);
+  std::vector<char> moving_;  // scratch of detectPoints: per collider, whether it moves more than the slop
+  /// How far apart a touching pair's points may be and still be solved in a step of h (docs/contact.md,
+  /// step 2): the slop plus what a point closing at kSpeculativeSpeed covers in the step.
+  double speculativeDistance(double h) const;
   bool restoreAfterFailedLocation(SceneBodies& bodies, const Candidate& candidate);
   void findCandidates(SceneBodies& bodies, const std::vector<char>& running, double h);
   bool resolveImpact(SceneBodies& bodies, Candidate candidate, double h);

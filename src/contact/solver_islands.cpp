@@ -26,6 +26,7 @@ void limitLiftOfNewContacts(const std::vector<SolverContact>& contacts, std::vec
   for (std::size_t k = range.contact_begin; k < range.contact_end; ++k) {
     const SolverContact& c = contacts[k];
     if (c.sustained) continue;
+    if (c.separation > 0.0 && c.normal_impulse == 0.0) continue;  // a speculative point that stopped nothing
     const SolverBody& a = bodies[c.a];
     const SolverBody& b = bodies[c.b];
     const double lift = c.n.dot(a.dx - b.dx) + c.cross_a.col(0).dot(a.dtheta) - c.cross_b.col(0).dot(b.dtheta);

@@ -1,0 +1,172 @@
+// What a contact carries from one step to the next (docs/contact.md, steps 5 and 6): a solver contact made
+// from a detected point with the impulses of the point it matches from the last step (warm starting) and
+// the anchors of a sticking point, and, after the solve, the points remembered for the next step and the
+// contact reports.
+#include "contact_step.hpp"
+
+#include <algorithm>
+
+namespace rigid_body {
+namespace contact {
+
+namespace {
+
+// A point found this close to where a point of the same pair was last step (on the body) inherits its
+// impulses as the solver's first guess [m].
+constexpr double kWarmStartMatch = 2e-3;
+// A contact sticks (and keeps its anchors) only if its slip in the solve's last sweep would move it by less
+// than this fraction of the penetration slop in the step: a sliding box's corner can end a solve with its
+// friction impulse inside the disc, and anchored it would be held back (its stop distance 10 % short).
+constexpr double kStickingSlip = 0.1;
+// A point starts to stick only with its friction impulse within this fraction of the disc's radius μ fₙ: a
+// block starting to slide from rest has a slow slip for its first steps, and the corners an unconverged solve
+// leaves just inside the disc were anchored (its travel down an incline 4.7e-4 short at h = 0.25 ms with 5
+// sweeps, against 1.4e-5).
+constexpr double kStartingFriction = 0.5;
+
+}  // namespace
+
+void ContactStep::addContact(const ContactPoint& point, const SceneBodies& bodies, bool resting) {
+  SolverContact c;
+  c.a = solverIndex(bodies, point.a);
+  c.b = solverIndex(bodies, point.b);
+  if (c.a != kEnvironment) c.r_a = point.on_a - bodies.states[colliders_[point.a]].p_WB;
+  if (c.b != kEnvironment) c.r_b = point.on_b - bodies.states[colliders_[point.b]].p_WB;
+  c.n = point.normal;
+  CollisionWorld::tangentBasis(c.n, c.t1, c.t2);
+  c.separation = point.distance;
+  const ContactMaterial material = combined(point.a, point.b);
+  c.friction = material.friction;
+  // A pair that was already touching rests or slides: it does not bounce again. A speculative point is not
+  // touching: its impulse stops an arrival, so the step does not move its body on by c h Δv (solver_islands).
+  c.sustained = resting && wasTouching(pairKey(point.a, point.b)) && !point.speculative;
+  c.restitution = c.sustained ? 0.0 : material.restitution;
+  const WarmPoint* last = resting && wasTouching(pairKey(point.a, point.b)) ? warmStart(c, point, bodies) : nullptr;
+  // A point that stuck last step keeps the anchors where it began to stick, unless one of them has left the
+  // point by more than the warm-start match.
+  std::pair<Eigen::Vector3d, Eigen::Vector3d> anchors(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+  if (last != nullptr && last->anchored && !point.speculative) {
+    const bool lower_a = point.a < point.b;
+    const Eigen::Vector3d& on_a = lower_a ? last->anchor_lo : last->anchor_hi;
+    const Eigen::Vector3d& on_b = lower_a ? last->anchor_hi : last->anchor_lo;
+    const Eigen::Vector3d A = inWorld(point.a, on_a, bodies), B = inWorld(point.b, on_b, bodies);
+    if ((A - point.on_a).squaredNorm() < kWarmStartMatch * kWarmStartMatch &&
+        (B - point.on_b).squaredNorm() < kWarmStartMatch * kWarmStartMatch) {
+      c.anchored = true;
+      c.anchor_gap = Eigen::Vector2d(c.t1.dot(A - B), c.t2.dot(A - B));
+      anchors = {on_a, on_b};
+    }
+  }
+  solver_contacts_.push_back(c);
+  solver_points_.push_back(&point);
+  solver_anchors_.push_back(anchors);
+}
+
+Eigen::Vector3d ContactStep::inObjectFrame(std::size_t object, const Eigen::Vector3d& p_W,
+                                           const SceneBodies& bodies) const {
+  if (!world_->isBody(object)) return p_W;
+  const State& state = bodies.states[colliders_[object]];
+  return state.q_WB.conjugate() * (p_W - state.p_WB);
+}
+
+Eigen::Vector3d ContactStep::inWorld(std::size_t object, const Eigen::Vector3d& local, const SceneBodies& bodies) const {
+  if (!world_->isBody(object)) return local;
+  const State& state = bodies.states[colliders_[object]];
+  return state.p_WB + state.q_WB * local;
+}
+
+Eigen::Vector3d ContactStep::localPoint(const ContactPoint& point, const SceneBodies& bodies) const {
+  return world_->isBody(point.a) ? inObjectFrame(point.a, point.on_a, bodies) : inObjectFrame(point.b, point.on_b, bodies);
+}
+
+const ContactStep::WarmPoint* ContactStep::warmStart(SolverContact& c, const ContactPoint& point,
+                                                     const SceneBodies& bodies) const {
+  const std::uint64_t key = pairKey(point.a, point.b);
+  if (key != warm_memo_key_) {
+    WarmPoint probe{};
+    probe.key = key;
+    const auto found = std::equal_range(warm_.begin(), warm_.end(), probe);
+    warm_memo_key_ = key;
+    warm_memo_begin_ = static_cast<std::size_t>(found.first - warm_.begin());
+    warm_memo_end_ = static_cast<std::size_t>(found.second - warm_.begin());
+  }
+  const auto range = std::make_pair(warm_.begin() + static_cast<std::ptrdiff_t>(warm_memo_begin_),
+                                    warm_.begin() + static_cast<std::ptrdiff_t>(warm_memo_end_));
+  if (range.first == range.second) return nullptr;
+  const WarmPoint* best = nullptr;
+  if (point.feature >= 0) {  // a half-space contact: the same corner of the same body
+    for (auto it = range.first; it != range.second && best == nullptr; ++it) {
+      if (it->feature == point.feature) best = &*it;
+    }
+  } else {
+    const Eigen::Vector3d local = localPoint(point, bodies);
+    double best_squared = kWarmStartMatch * kWarmStartMatch;
+    for (auto it = range.first; it != range.second; ++it) {
+      const double squared = (it->local - local).squaredNorm();
+      if (squared < best_squared) best = &*it, best_squared = squared;
+    }
+  }
+  if (best == nullptr) return nullptr;
+  // The pair's order may differ from last step's: impulses are stored as acting on the pair's lower object.
+  const double sign = point.a < point.b ? 1.0 : -1.0;
+  c.normal_impulse = best->normal_impulse;
+  c.friction_impulse = sign * Eigen::Vector2d(c.t1.dot(best->friction_impulse_W), c.t2.dot(best->friction_impulse_W));
+  return best;
+}
+
+void ContactStep::rememberContacts(const SceneBodies& bodies, double h) {
+  warm_next_.clear();
+  for (std::size_t i = 0; i < solver_contacts_.size(); ++i) {
+    const SolverContact& c = solver_contacts_[i];
+    const ContactPoint& point = *solver_points_[i];
+    const Eigen::Vector3d friction = c.friction_impulse.x() * c.t1 + c.friction_impulse.y() * c.t2;
+    // Anchored next step (docs/contact.md, step 6), only after a solve that did not converge and only for a
+    // point that does not slide (its slip in the solve's last sweep moves it by less than kStickingSlip of
+    // the slop in the step). One that was anchored keeps its anchors while its friction stays inside the disc
+    // (or it is not pressed for a step); one that starts to stick (pressed, its friction within
+    // kStartingFriction of the disc's radius) anchors where it is now, on each body as the body now stands
+    // (the anchors then coincide in the tangent plane). Never on a curved surface: a rolling body's contact
+    // point moves over its surface while its material points do not slip, and anchors left behind would hold
+    // it back (a sphere rolling down an incline lost 1.5e-6 of its distance in 1 s at h = 0.25 ms).
+    const double slip_limit = kStickingSlip * settings_.penetration_slop / h;
+    const bool slow = c.slip_squared < slip_limit * slip_limit;
+    const double limit = c.friction * c.normal_impulse, f2 = c.friction_impulse.squaredNorm();
+    const bool starts = !c.anchored && !point.speculative && !curved_[point.a] && !curved_[point.b] && c.normal_impulse > 0.0 &&
+                        f2 < kStartingFriction * kStartingFriction * limit * limit;
+    const bool keeps = c.anchored && (c.normal_impulse == 0.0 || f2 < limit * limit);
+    const bool sticking = !islands_.converged(i) && slow && (starts || keeps);
+    std::pair<Eigen::Vector3d, Eigen::Vector3d> anchors = solver_anchors_[i];
+    if (sticking && starts) {
+      anchors = {inObjectFrame(point.a, point.on_a, bodies), inObjectFrame(point.b, point.on_b, bodies)};
+    }
+    const bool lower_a = point.a < point.b;
+    warm_next_.push_back({pairKey(point.a, point.b), point.feature,
+                          point.feature >= 0 ? Eigen::Vector3d::Zero() : localPoint(point, bodies), c.normal_impulse,
+                          (lower_a ? 1.0 : -1.0) * friction, sticking, lower_a ? anchors.first : anchors.second,
+                          lower_a ? anchors.second : anchors.first});
+    if (!recording_ || point.speculative) continue;  // a report lists what touches
+    const double depth = std::max(0.0, -point.distance);
+    if (world_->isBody(point.a)) {
+      contacts_[point.a].push_back({partner(point.b), point.on_a, c.n, depth, c.normal_impulse, friction});
+    }
+    if (world_->isBody(point.b)) {
+      contacts_[point.b].push_back({partner(point.a), point.on_b, -c.n, depth, c.normal_impulse, -friction});
+    }
+  }
+  if (sleep_.anyAsleep()) {
+    for (const WarmPoint& w : warm_) {
+      if (sleepingPair(w.key)) warm_next_.push_back(w);  // kept for when the island wakes
+    }
+  }
+  // By pair, each pair's points in their order: sorted as (key, position) pairs and gathered, not moved
+  // about whole (a warm point is 14 doubles).
+  warm_order_.clear();
+  for (std::size_t i = 0; i < warm_next_.size(); ++i) warm_order_.emplace_back(warm_next_[i].key, i);
+  std::sort(warm_order_.begin(), warm_order_.end());
+  warm_.clear();
+  for (const auto& [key, i] : warm_order_) warm_.push_back(warm_next_[i]);
+  warm_memo_key_ = ~std::uint64_t{0};
+}
+
+}  // namespace contact
+}  // namespace rigid_body
