@@ -73,7 +73,7 @@ double CollisionWorld::planeContacts(std::size_t body, std::size_t plane_object,
     smallest = std::min(smallest, distance);
     if (distance > max_distance || distance <= beyond) return;
     ContactPoint point;
-    point.speculative = beyond > -1.0 / 0.0;
+    point.speculative = beyond > -std::numeric_limits<double>::infinity();
     point.a = body;
     point.b = plane_object;
     point.on_a = x;

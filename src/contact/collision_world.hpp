@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -91,7 +92,7 @@ class CollisionWorld {
   /// The body's features within max_distance of the half-space (and beyond `beyond`: those are marked
   /// speculative); returns the smallest distance, or max_distance.
   double planeContacts(std::size_t body, std::size_t plane_object, double max_distance, std::vector<ContactPoint>& points,
-                       double beyond = -1.0 / 0.0) const;
+                       double beyond = -std::numeric_limits<double>::infinity()) const;
   /// A pair's speculative points: points[first…] are the pair's, at least one within max_distance. Its
   /// faces' points farther apart than `beyond` are added (those within max_distance as ordinary points):
   /// max_distance for a pair whose points came from face clipping, 0 for a box pair (its detector gives
