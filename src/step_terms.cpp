@@ -2,12 +2,13 @@
 
 namespace rigid_body {
 
-StepTerms assembleTerms(const MassProperties& mass, const ForceModel& forces, const State& state, bool takes_input) {
+StepTerms assembleTerms(const MassProperties& mass, const ForceModel& forces, const State& state, bool takes_input,
+                        bool collides) {
   StepTerms terms;
   terms.input = takes_input;
   terms.gravity = !forces.gravity_W.isZero(0.0);
   terms.linear_damping = forces.linear_damping > 0.0;
-  terms.rotation = takes_input || !state.L_W.isZero(0.0);
+  terms.rotation = takes_input || collides || !state.L_W.isZero(0.0);
   // With no rotation ω stays 0, so the angular damping torque −c_ω ω is 0 as well.
   terms.angular_damping = terms.rotation && forces.angular_damping > 0.0;
   terms.world_inertia = terms.rotation && !mass.isIsotropic();

@@ -31,10 +31,12 @@ struct StepTerms {
 };
 
 /// The terms a body needs: gravity if g ≠ 0, each damping if its coefficient is > 0, the input if the body
-/// takes wrench commands, rotation if it can spin (it takes input, which may carry a torque, or L ≠ 0: no
-/// other term makes a torque about the centre of mass while ω = 0), the world-inertia rotation unless the
-/// inertia is isotropic.
-StepTerms assembleTerms(const MassProperties& mass, const ForceModel& forces, const State& state, bool takes_input);
+/// takes wrench commands, rotation if it can spin (it takes input, which may carry a torque, it collides,
+/// and a contact off its centre of mass makes a torque, or L ≠ 0: no other term makes a torque about the
+/// centre of mass while ω = 0), and with rotation the world-inertia rotation unless the inertia is
+/// isotropic and the angular damping if its coefficient is > 0.
+StepTerms assembleTerms(const MassProperties& mass, const ForceModel& forces, const State& state, bool takes_input,
+                        bool collides = false);
 
 /// "translation, rotation (isotropic: w = L/I0), wrench input, gravity": the assembled terms, for the start-up
 /// log (ASCII: roslaunch prints other characters as "?" under a C locale).

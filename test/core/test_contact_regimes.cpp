@@ -479,3 +479,38 @@ TEST(ContactRegimes, ABodyInsideAClosedMeshIsRefusedAtStartAndWhenSet) {
   state.p_WB = Eigen::Vector3d(1.5, 0, 0);
   EXPECT_TRUE(world.setState(0, state, 0).accepted);
 }
+
+TEST(ContactRegimes, ABoxTippingOverAnEdgePivotsAboutItAndLandsOnItsSide) {
+  // A 0.05 × 0.15 × 0.2 m box standing on its end, leaning 0.35 rad (past its tipping angle atan(0.025/0.1)),
+  // μ = 0.8 (far more than the pivot needs): the edge sticks while the box turns about it, so the edge stays
+  // where it was to the step's second-order error (ω² R h² a step, ~1e-7 m at the turn rates of the first
+  // 0.11 s, at h = 1 ms), and the side lands within the slop. A body whose free step turned it by ω = L/I₀
+  // instead of its full inertia crept 1.5 mm in 0.11 s at every step size and landed 0.63 mm deep.
+  const Eigen::Vector3d size(0.05, 0.15, 0.2);
+  const Eigen::Vector3d pivot_B(0.025, 0.0, -0.1);  // the lowest edge, its middle
+  const Eigen::Quaterniond q(Eigen::AngleAxisd(0.35, Eigen::Vector3d::UnitY()));
+  for (const bool table : {false, true}) {
+    for (const double h : {1e-3, 2.5e-4}) {
+      ContactSetup setup;
+      setup.settings.sleep = false;
+      if (table) {
+        CollisionShape box = reference::collisionShape(ShapeType::kBox, Eigen::Vector3d(1.0, 1.0, 0.2), 0.8, 0.0);
+        box.pose.translation() = Eigen::Vector3d(0.0, 0.0, -0.1);
+        setup.environment = {box};
+      } else {
+        setup.environment = {reference::groundPlane(Eigen::Vector3d::UnitZ(), 0.8)};
+      }
+      setup.bodies = {reference::collisionShape(ShapeType::kBox, size, 0.8, 0.0)};
+      const Eigen::Vector3d start(0.0, 0.0, 1e-6);
+      Scene scene({reference::contactBody(MassProperties::box(1.0, size), start - q * pivot_B, q, Eigen::Vector3d::Zero(),
+                                          Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0, -9.81))},
+                  IntegratorType::kRk4, h, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+      scene.step(static_cast<std::int64_t>(std::llround(0.11 / h)));
+      const Eigen::Vector3d edge = scene.state(0).p_WB + scene.state(0).q_WB * pivot_B;
+      EXPECT_LT((edge - start).head<2>().norm(), 1e-5) << "table " << table << ", h " << h;
+      scene.step(static_cast<std::int64_t>(std::llround(0.9 / h)));
+      EXPECT_NEAR(scene.state(0).p_WB.z(), 0.025, 2e-4) << "table " << table << ", h " << h;  // on its side
+      EXPECT_LE(scene.contactStatistics().max_penetration, 1e-4) << "table " << table << ", h " << h;
+    }
+  }
+}

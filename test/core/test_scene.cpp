@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "rigid_body_sim/kinematics.hpp"
+#include "rigid_body_sim/references.hpp"
 #include "rigid_body_sim/rotation.hpp"
 #include "rigid_body_sim/scene.hpp"
 #include "rigid_body_sim/step_terms.hpp"
@@ -77,6 +78,28 @@ TEST(StepTerms, SpinNeedsRotationAndAnIsotropicBodySkipsTheWorldInertia) {
   const StepTerms box_terms = assembleTerms(kBox, ForceModel{}, spinning(kBox, Eigen::Vector3d(1, 2, 3)), false);
   EXPECT_TRUE(box_terms.rotation);
   EXPECT_TRUE(box_terms.world_inertia);
+}
+
+TEST(StepTerms, AColliderAtRestTurnsByItsFullInertiaAndAngularDamping) {
+  // A contact off the centre of mass can make it spin at any step: a colliding box at rest, without input,
+  // gets the rotation with its world inertia (not the isotropic shortcut ω = L/I₀) and its angular damping.
+  ForceModel forces = gravity(9.81);
+  forces.angular_damping = 0.1;
+  const StepTerms collider = assembleTerms(kBox, forces, State{}, false, true);
+  EXPECT_TRUE(collider.rotation);
+  EXPECT_TRUE(collider.world_inertia);
+  EXPECT_TRUE(collider.angular_damping);
+  EXPECT_FALSE(collider.input);
+  // And so in a scene, whatever its step assembly leaves out of the others.
+  ContactSetup setup;
+  setup.environment = {reference::groundPlane(Eigen::Vector3d::UnitZ(), 0.5)};
+  setup.bodies = {reference::collisionShape(ShapeType::kBox, Eigen::Vector3d(0.4, 0.2, 0.1), 0.5, 0.0), std::nullopt};
+  State above;
+  above.p_WB = Eigen::Vector3d(0, 0, 1);
+  const Scene scene({{Model{kBox, forces}, above, false}, {Model{kBox, forces}, above, false}}, IntegratorType::kRk4,
+                    0.001, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+  EXPECT_TRUE(scene.terms(0).world_inertia && scene.terms(0).angular_damping);
+  EXPECT_FALSE(scene.terms(1).rotation);
 }
 
 TEST(Scene, AZeroGSceneHasNoGravityTermAndAFallingOneHas) {
