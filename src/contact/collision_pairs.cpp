@@ -37,21 +37,25 @@ bool CollisionWorld::addFacePoints(const btPersistentManifold& manifold, double 
   return addFacePoints(query, max_distance, points);
 }
 
-bool CollisionWorld::addFacePoints(const ContactPoint& query, double max_distance, std::vector<ContactPoint>& points) {
+int CollisionWorld::proxyType(std::size_t object) const {
+  const btCollisionObject* bullet = impl_->objects[object].get();
+  return bullet == nullptr ? -1 : bullet->getCollisionShape()->getShapeType();
+}
+
+bool CollisionWorld::clipPairFaces(const ContactPoint& query, double max_distance, std::vector<ContactPoint>& points) {
   const HullFaces *hull_a = nullptr, *hull_b = nullptr;
   const Eigen::Isometry3d *X_WA = nullptr, *X_WB = nullptr;
-  const btCollisionObject* object_a = impl_->objects[query.a].get();  // null for a half-space
-  const btCollisionObject* object_b = impl_->objects[query.b].get();
-  if (object_a == nullptr || object_b == nullptr ||
-      !faceClippedPair(object_a->getCollisionShape()->getShapeType(), object_b->getCollisionShape()->getShapeType())) {
-    return false;
-  }
   const CollisionShape* shape_a = facedShape(query.a, &hull_a, &X_WA);
   const CollisionShape* shape_b = facedShape(query.b, &hull_b, &X_WB);
   supportingFace(*shape_a, hull_a, *X_WA, -query.normal, impl_->face_a);
   supportingFace(*shape_b, hull_b, *X_WB, query.normal, impl_->face_b);
+  return clipFaces(impl_->face_a, impl_->face_b, query.normal, max_distance, query, points);
+}
+
+bool CollisionWorld::addFacePoints(const ContactPoint& query, double max_distance, std::vector<ContactPoint>& points) {
+  if (!faceClippedPair(proxyType(query.a), proxyType(query.b))) return false;
   const std::size_t first = points.size();
-  if (!clipFaces(impl_->face_a, impl_->face_b, query.normal, max_distance, query, points)) return false;
+  if (!clipPairFaces(query, max_distance, points)) return false;
   // The clipped points lie on the exact surfaces, the query's on surfaces whose edges and corners may be
   // rounded inward by a margin (a box's, a cylinder's): the deepest clipped point can lie no farther out
   // than the query's. Farther out, the faces do not hold the contact (a corner of the pair the clipping

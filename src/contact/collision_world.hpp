@@ -102,6 +102,11 @@ class CollisionWorld {
   /// The shape of an object whose faces give its contact points (faceClippedPair in collision_world_impl.hpp
   /// decides which), with its hull's faces (kMesh) and its pose.
   const CollisionShape* facedShape(std::size_t object, const HullFaces** hull, const Eigen::Isometry3d** X_WS) const;
+  /// Bullet's shape type of an object (its proxy type), or −1 for a half-space (not in Bullet's world).
+  int proxyType(std::size_t object) const;
+  /// The pair's faces along the query's normal, clipped (face_manifold.hpp): their points up to
+  /// max_distance apart appended to `points`; false where the faces make none.
+  bool clipPairFaces(const ContactPoint& query, double max_distance, std::vector<ContactPoint>& points);
   /// A pair's points by face clipping from the normal of its one query's point (face_manifold.hpp), or of
   /// its manifold's deepest; false, adding nothing, where the pair's shapes or faces do not make them.
   bool addFacePoints(const ContactPoint& query, double max_distance, std::vector<ContactPoint>& points);

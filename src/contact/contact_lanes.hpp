@@ -29,23 +29,10 @@ typedef double EightLanes __attribute__((vector_size(64)));
 template <class T>
 using LaneMask = decltype(T() < T());
 
-// Lane access and the lanes' own std::max, sign test and selection, the same in one lane as in several.
-template <class T>
-RIGID_BODY_LANE_INLINE void setLane(T& v, std::size_t i, double value) {
-  if constexpr (std::is_same_v<T, double>) {
-    (void)i, v = value;
-  } else {
-    v[i] = value;
-  }
-}
-template <class T>
-RIGID_BODY_LANE_INLINE double laneValue(const T& v, std::size_t i) {
-  if constexpr (std::is_same_v<T, double>) {
-    return (void)i, v;
-  } else {
-    return v[i];
-  }
-}
+// Lane access (lane_math.hpp's, for any vector of lanes), and the lanes' own std::max, sign test and
+// selection, the same in one lane as in several.
+using integrators::laneValue;
+using integrators::setLane;
 template <class M>
 RIGID_BODY_LANE_INLINE bool laneOn(const M& m, std::size_t i) {
   if constexpr (std::is_same_v<M, bool>) {
@@ -75,10 +62,6 @@ RIGID_BODY_LANE_INLINE bool anyLane(const M& m) {
 template <class T>
 RIGID_BODY_LANE_INLINE T laneSelect(const LaneMask<T>& m, const T& a, const T& b) {
   return m ? a : b;
-}
-template <class T>
-RIGID_BODY_LANE_INLINE void setVecLane(Vec<T>& to, std::size_t i, const Eigen::Vector3d& from) {
-  setLane(to.x, i, from.x()), setLane(to.y, i, from.y()), setLane(to.z, i, from.z());
 }
 
 /// A solver body's velocities and inverse mass, as the lanes gather and scatter them.

@@ -105,7 +105,6 @@ class ContactStep {
   /// The points at the poses as placed; with the bodies and the step, pairs touching within the slop with
   /// a body that moves add their speculative points (speculativeDistance).
   void detectPoints(const SceneBodies* bodies = nullptr, double h = 0.0);
-  std::vector<char> moving_;  // scratch of detectPoints: per collider, whether it moves more than the slop
   /// How far apart a touching pair's points may be and still be solved in a step of h (docs/contact.md,
   /// step 2): the slop plus what a point closing at kSpeculativeSpeed covers in the step.
   double speculativeDistance(double h) const;
@@ -188,6 +187,7 @@ class ContactStep {
   // Per step, reused (no allocation once warm).
   std::vector<State> start_;
   std::vector<ContactPoint> points_, pair_points_;
+  std::vector<char> moving_;  // scratch of detectPoints: per collider, whether it moves more than the slop
   std::vector<std::uint64_t> touching_, engaged_;
   // wasTouching's last answer: a pair's points follow each other, and each asks it several times. Reset
   // wherever touching_ changes.

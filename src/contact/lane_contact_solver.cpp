@@ -25,11 +25,11 @@ struct IslandSweeps {
 
 template <class T>
 void loadPoint(PointLanes<T>& s, std::size_t l, const SolverContact& c) {
-  setVecLane(s.n, l, c.n), setVecLane(s.t1, l, c.t1), setVecLane(s.t2, l, c.t2);
+  setLane(s.n, l, c.n), setLane(s.t1, l, c.t1), setLane(s.t2, l, c.t2);
   for (int j = 0; j < 3; ++j) {
-    setVecLane(s.cross_a[j], l, Eigen::Vector3d(c.cross_a.col(j))), setVecLane(s.cross_b[j], l, Eigen::Vector3d(c.cross_b.col(j)));
-    setVecLane(s.response_a[j], l, Eigen::Vector3d(c.response_a.col(j)));
-    setVecLane(s.response_b[j], l, Eigen::Vector3d(c.response_b.col(j)));
+    setLane(s.cross_a[j], l, Eigen::Vector3d(c.cross_a.col(j))), setLane(s.cross_b[j], l, Eigen::Vector3d(c.cross_b.col(j)));
+    setLane(s.response_a[j], l, Eigen::Vector3d(c.response_a.col(j)));
+    setLane(s.response_b[j], l, Eigen::Vector3d(c.response_b.col(j)));
   }
   setLane(s.normal_mass, l, c.normal_mass);
   setLane(s.tangent_mass00, l, c.tangent_mass(0, 0)), setLane(s.tangent_mass01, l, c.tangent_mass(0, 1));

@@ -8,7 +8,6 @@
 #include "collision_world.hpp"
 
 #include "collision_world_impl.hpp"
-#include "face_manifold.hpp"
 
 namespace rigid_body {
 namespace contact {
@@ -23,21 +22,10 @@ void CollisionWorld::addSpeculativePoints(std::size_t first, double max_distance
   const ContactPoint query = points[deepest];
   // Shapes with faces only (a sphere's one point is all it has; a triangle of an environment mesh is not
   // known to the face code); box pairs too, whose detector gives penetrating points only.
-  const btCollisionObject* object_a = impl_->objects[query.a].get();
-  const btCollisionObject* object_b = impl_->objects[query.b].get();
-  if (object_a == nullptr || object_b == nullptr || !facedType(object_a->getCollisionShape()->getShapeType()) ||
-      !facedType(object_b->getCollisionShape()->getShapeType())) {
-    return;
-  }
-  const HullFaces *hull_a = nullptr, *hull_b = nullptr;
-  const Eigen::Isometry3d *X_WA = nullptr, *X_WB = nullptr;
-  const CollisionShape* shape_a = facedShape(query.a, &hull_a, &X_WA);
-  const CollisionShape* shape_b = facedShape(query.b, &hull_b, &X_WB);
-  supportingFace(*shape_a, hull_a, *X_WA, -query.normal, impl_->face_a);
-  supportingFace(*shape_b, hull_b, *X_WB, query.normal, impl_->face_b);
+  if (!facedType(proxyType(query.a)) || !facedType(proxyType(query.b))) return;
   std::vector<ContactPoint>& clipped = impl_->speculative_points;
   clipped.clear();
-  if (!clipFaces(impl_->face_a, impl_->face_b, query.normal, speculative_distance, query, clipped)) return;
+  if (!clipPairFaces(query, speculative_distance, clipped)) return;
   for (ContactPoint& point : clipped) {
     if (!(point.distance > beyond)) continue;  // the pair's own points already hold what is this near
     point.speculative = point.distance > max_distance;

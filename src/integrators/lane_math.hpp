@@ -219,10 +219,18 @@ RIGID_BODY_LANE_INLINE void normaliseQuaternion(LaneState<T>& y) {
 // ---------------------------------------------------------------------------------------------------------
 // Loading bodies into lanes and back. For T = double there is one lane (lane index 0).
 
+// A vector of lanes is any vector type with an element per lane: Lanes here, the contact solver's eight
+// lanes (src/contact/contact_lanes.hpp) too.
 RIGID_BODY_LANE_INLINE void setLane(double& v, std::size_t, double value) { v = value; }
-RIGID_BODY_LANE_INLINE void setLane(Lanes& v, std::size_t i, double value) { v[i] = value; }
+template <class V>
+RIGID_BODY_LANE_INLINE auto setLane(V& v, std::size_t i, double value) -> decltype(void(v[i] = value)) {
+  v[i] = value;
+}
 RIGID_BODY_LANE_INLINE double laneValue(const double& v, std::size_t) { return v; }
-RIGID_BODY_LANE_INLINE double laneValue(const Lanes& v, std::size_t i) { return v[i]; }
+template <class V>
+RIGID_BODY_LANE_INLINE auto laneValue(const V& v, std::size_t i) -> decltype(double(v[i])) {
+  return v[i];
+}
 
 template <class T>
 RIGID_BODY_LANE_INLINE void setLane(Vec<T>& to, std::size_t i, const Eigen::Vector3d& from) {
