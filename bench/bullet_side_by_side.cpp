@@ -4,13 +4,16 @@
 // sweeps, friction (μ = 0.5 between any two surfaces), no restitution and sleeping off in both. Prints the
 // wall time per body-step; the sag (the largest distance of a body from where it started, after settling)
 // and the creep (the largest distance a body moved over the timed run: the drift of a resting stack); the
-// deepest penetration seen after a step (the pile's, during its drop).
+// deepest penetration in a state either engine handed out after a step (the pile's, during its drop), both
+// found by Bullet's collision detection (the package's bodies in a collision world of their own, outside the
+// timing), and the package's own deepest contact at the end of a free step, before its solve moves it out.
 //
 // Bullet: btDiscreteDynamicsWorld with btSequentialImpulseConstraintSolver (Debian's libbullet, double
 // precision), one stepSimulation(h, 0) per step (no interpolation substeps), deactivation disabled, the same
 // masses and principal moments as the package's solids. It combines friction by product, so each surface
 // gets √0.5; the package takes the geometric mean of 0.5 and 0.5. Its penetration is read from its contact
-// manifolds after each step, outside the timing.
+// manifolds after each step, outside the timing: detected at the start of a step, they are those of the state
+// its last step handed out.
 //
 // Usage: bullet_side_by_side [STACK_BODIES...=100 1000]; env SETTLE_SECONDS (0.5) and SIM_SECONDS (3) for the
 // stacks and the pyramid: untimed settling, then the timed run over which creep is measured; PILE_BODIES
@@ -128,7 +131,10 @@ struct Outcome {
   double microseconds_per_body_step = 0.0;  // over the timed steps
   double sag = 0.0;          // [m] the largest distance of a body from its start when the timed steps begin
   double creep = 0.0;        // [m] the largest distance a body moved over the timed steps
-  double penetration = 0.0;  // [m] the deepest contact seen after a step
+  double penetration = 0.0;  // [m] the deepest contact in a state handed out after a step
+  // [m] as each engine detects it: the package at the end of a free step, before its solve moves the bodies
+  // out; Bullet at the start of a step (its manifolds), on the state its last step handed out
+  double detected = 0.0;
 };
 
 double largestDistance(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b) {
@@ -147,7 +153,97 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-Outcome runPackage(const Placement& pieces, const Walls& walls, const Run& run, int iterations, std::size_t threads) {
+std::unique_ptr<btCollisionShape> bulletShape(const Piece& piece) {
+  switch (piece.shape) {
+    case ShapeType::kSphere:
+      return std::make_unique<btSphereShape>(piece.size.x());
+    case ShapeType::kCylinder:
+      return std::make_unique<btCylinderShapeZ>(btVector3(piece.size.x(), piece.size.x(), 0.5 * piece.size.y()));
+    case ShapeType::kCapsule:
+      return std::make_unique<btCapsuleShapeZ>(piece.size.x(), piece.size.y());
+    default:
+      return std::make_unique<btBoxShape>(btVector3(0.5 * piece.size.x(), 0.5 * piece.size.y(), 0.5 * piece.size.z()));
+  }
+}
+
+// The deepest penetration among the world's contact manifolds (as detected in the last step) [m].
+double deepestContact(btCollisionWorld& world) {
+  double deepest = 0.0;
+  btDispatcher& dispatcher = *world.getDispatcher();
+  for (int m = 0; m < dispatcher.getNumManifolds(); ++m) {
+    const btPersistentManifold& manifold = *dispatcher.getManifoldByIndexInternal(m);
+    for (int c = 0; c < manifold.getNumContacts(); ++c) {
+      deepest = std::max(deepest, -static_cast<double>(manifold.getContactPoint(c).getDistance()));
+    }
+  }
+  return deepest;
+}
+
+
+// Bullet's collision detection alone over the package's bodies: the penetration in the states the package
+// hands out after a step, found as Bullet's world finds its own (which detects at the start of a step, on
+// the state its last step handed out), so that both engines' deepest contacts are the same quantity.
+class PublishedDepth {
+ public:
+  PublishedDepth(const Placement& pieces, const Walls& walls)
+      : dispatcher_(&configuration_), world_(&dispatcher_, &broadphase_, &configuration_) {
+    add(std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), 0.0), btTransform::getIdentity(), true);
+    for (std::size_t i = 0; i < walls.centres.size(); ++i) {
+      const Eigen::Vector3d& c = walls.centres[i];
+      const Eigen::Vector3d half = 0.5 * walls.sizes[i];
+      add(std::make_unique<btBoxShape>(btVector3(half.x(), half.y(), half.z())),
+          btTransform(btQuaternion::getIdentity(), btVector3(c.x(), c.y(), c.z())), true);
+    }
+    first_ = objects_.size();
+    for (const Piece& piece : pieces) add(bulletShape(piece), btTransform::getIdentity(), false);
+  }
+  ~PublishedDepth() {
+    for (const auto& object : objects_) world_.removeCollisionObject(object.get());
+  }
+
+  // The deepest penetration among the bodies and the environment, body i at pose(i) [m].
+  template <class Pose>
+  double deepest(Pose pose) {
+    for (std::size_t i = first_; i < objects_.size(); ++i) objects_[i]->setWorldTransform(pose(i - first_));
+    world_.performDiscreteCollisionDetection();
+    return deepestContact(world_);
+  }
+  double deepest(const Scene& scene) {
+    return deepest([&](std::size_t i) {
+      const State& s = scene.state(i);
+      return btTransform(btQuaternion(s.q_WB.x(), s.q_WB.y(), s.q_WB.z(), s.q_WB.w()),
+                         btVector3(s.p_WB.x(), s.p_WB.y(), s.p_WB.z()));
+    });
+  }
+
+ private:
+  // The environment's shapes are static, as in Bullet's own world: not tested against each other.
+  void add(std::unique_ptr<btCollisionShape> shape, const btTransform& pose, bool environment) {
+    objects_.push_back(std::make_unique<btCollisionObject>());
+    objects_.back()->setCollisionShape(shape.get());
+    objects_.back()->setWorldTransform(pose);
+    shapes_.push_back(std::move(shape));
+    if (environment) {
+      objects_.back()->setCollisionFlags(btCollisionObject::CF_STATIC_OBJECT);
+      world_.addCollisionObject(objects_.back().get(), btBroadphaseProxy::StaticFilter,
+                                btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter);
+    } else {
+      world_.addCollisionObject(objects_.back().get());
+    }
+  }
+
+  btDefaultCollisionConfiguration configuration_;
+  btCollisionDispatcher dispatcher_;
+  btDbvtBroadphase broadphase_;
+  btCollisionWorld world_;
+  std::vector<std::unique_ptr<btCollisionShape>> shapes_;
+  std::vector<std::unique_ptr<btCollisionObject>> objects_;
+  std::size_t first_ = 0;
+};
+
+// The package's run; with `depth`, the penetration of every step's outcome is measured (outside the timing).
+Outcome runPackage(const Placement& pieces, const Walls& walls, const Run& run, int iterations, std::size_t threads,
+                   PublishedDepth* depth) {
   ContactSetup setup;
   setup.settings.sleep = false;
   setup.settings.iterations = iterations;
@@ -187,43 +283,33 @@ Outcome runPackage(const Placement& pieces, const Walls& walls, const Run& run, 
     for (std::size_t i = 0; i < pieces.size(); ++i) p.push_back(scene.state(i).p_WB);
     return p;
   };
-  scene.step(run.settle);
+  double penetration = 0.0, seconds_stepping = 0.0;
+  const auto stepAndMeasure = [&](std::int64_t steps) {
+    if (depth == nullptr) {
+      scene.step(steps);
+      return;
+    }
+    for (std::int64_t k = 0; k < steps; ++k) {
+      const auto start = std::chrono::steady_clock::now();
+      scene.step(1);
+      seconds_stepping += secondsSince(start);
+      penetration = std::max(penetration, depth->deepest(scene));
+    }
+  };
+  stepAndMeasure(run.settle);
   const std::vector<Eigen::Vector3d> settled = positions();
+  seconds_stepping = 0.0;
   const auto start = std::chrono::steady_clock::now();
-  scene.step(run.steps);
-  const double seconds = secondsSince(start);
+  stepAndMeasure(run.steps);
+  const double seconds = depth == nullptr ? secondsSince(start) : seconds_stepping;
   return {seconds * 1e6 / (static_cast<double>(run.steps) * static_cast<double>(pieces.size())),
-          largestDistance(starts(pieces), settled), largestDistance(settled, positions()),
+          largestDistance(starts(pieces), settled), largestDistance(settled, positions()), penetration,
           scene.contactStatistics().max_penetration};
 }
 
-std::unique_ptr<btCollisionShape> bulletShape(const Piece& piece) {
-  switch (piece.shape) {
-    case ShapeType::kSphere:
-      return std::make_unique<btSphereShape>(piece.size.x());
-    case ShapeType::kCylinder:
-      return std::make_unique<btCylinderShapeZ>(btVector3(piece.size.x(), piece.size.x(), 0.5 * piece.size.y()));
-    case ShapeType::kCapsule:
-      return std::make_unique<btCapsuleShapeZ>(piece.size.x(), piece.size.y());
-    default:
-      return std::make_unique<btBoxShape>(btVector3(0.5 * piece.size.x(), 0.5 * piece.size.y(), 0.5 * piece.size.z()));
-  }
-}
-
-// The deepest penetration among the world's contact manifolds (as detected in the last step) [m].
-double deepestContact(btDiscreteDynamicsWorld& world) {
-  double deepest = 0.0;
-  btDispatcher& dispatcher = *world.getDispatcher();
-  for (int m = 0; m < dispatcher.getNumManifolds(); ++m) {
-    const btPersistentManifold& manifold = *dispatcher.getManifoldByIndexInternal(m);
-    for (int c = 0; c < manifold.getNumContacts(); ++c) {
-      deepest = std::max(deepest, -static_cast<double>(manifold.getContactPoint(c).getDistance()));
-    }
-  }
-  return deepest;
-}
-
-Outcome runBullet(const Placement& pieces, const Walls& walls, const Run& run, int iterations) {
+// Bullet's run; with `depth`, the penetration of every step's outcome is measured (outside the timing, which
+// such a run does not report: the probe's detection between steps would leave the caches cold).
+Outcome runBullet(const Placement& pieces, const Walls& walls, const Run& run, int iterations, PublishedDepth* depth) {
   btDefaultCollisionConfiguration configuration;
   btCollisionDispatcher dispatcher(&configuration);
   btDbvtBroadphase broadphase;
@@ -269,37 +355,49 @@ Outcome runBullet(const Placement& pieces, const Walls& walls, const Run& run, i
     }
     return p;
   };
-  double seconds = 0.0, penetration = 0.0;
+  double seconds = 0.0, penetration = 0.0, manifold_penetration = 0.0;
   std::vector<Eigen::Vector3d> settled;
   for (std::int64_t k = 0; k < run.settle + run.steps; ++k) {
     if (k == run.settle) settled = positions();
     const auto start = std::chrono::steady_clock::now();
     world.stepSimulation(kH, 0);
     if (k >= run.settle) seconds += secondsSince(start);
-    penetration = std::max(penetration, deepestContact(world));  // outside the timing
+    // Outside the timing: its state as handed out, measured as the package's is.
+    if (depth == nullptr) continue;
+    penetration = std::max(penetration, depth->deepest([&](std::size_t i) { return bodies[first + i]->getWorldTransform(); }));
+    manifold_penetration = std::max(manifold_penetration, deepestContact(world));
   }
   const Outcome outcome{seconds * 1e6 / (static_cast<double>(run.steps) * static_cast<double>(pieces.size())),
-                        largestDistance(starts(pieces), settled), largestDistance(settled, positions()), penetration};
+                        largestDistance(starts(pieces), settled), largestDistance(settled, positions()), penetration,
+                        manifold_penetration};
   for (const auto& body : bodies) world.removeRigidBody(body.get());
   return outcome;
 }
 
 void compare(const std::string& name, const Placement& pieces, const Walls& walls, const Run& run, int iterations) {
-  const Outcome ours = runPackage(pieces, walls, run, iterations, 1);
+  // One thread, timed in one call; then again step by step, with the penetration of every step's outcome
+  // (likewise for Bullet).
+  Outcome ours = runPackage(pieces, walls, run, iterations, 1, nullptr);
+  PublishedDepth depth(pieces, walls);
+  const Outcome measured = runPackage(pieces, walls, run, iterations, 1, &depth);
+  ours.penetration = measured.penetration;
   // Two threads: the same trajectory to the bit (the islands' solves spread over the pool), so only its time.
-  const Outcome ours_two = runPackage(pieces, walls, run, iterations, 2);
-  const Outcome bullet = runBullet(pieces, walls, run, iterations);
+  const Outcome ours_two = runPackage(pieces, walls, run, iterations, 2, nullptr);
+  Outcome bullet = runBullet(pieces, walls, run, iterations, nullptr);
+  const Outcome bullet_measured = runBullet(pieces, walls, run, iterations, &depth);
+  bullet.penetration = bullet_measured.penetration;
+  bullet.detected = bullet_measured.detected;
   char motion[96] = "- | -";  // a drop has no resting pose to sag from or creep away from
   if (run.settle > 0) {
     std::snprintf(motion, sizeof motion, "%.3f / %.3f | %.4f / %.4f", ours.sag * 1e3, bullet.sag * 1e3,
                   ours.creep * 1e3, bullet.creep * 1e3);
   }
-  std::printf("| %s | %zu | %.3f | %.3f | %.3f | %.2f | %.2f | %s | %.2f / %.2f |\n", name.c_str(), pieces.size(),
+  std::printf("| %s | %zu | %.3f | %.3f | %.3f | %.2f | %.2f | %s | %.2f / %.2f | %.2f / %.2f |\n", name.c_str(), pieces.size(),
               ours.microseconds_per_body_step, ours_two.microseconds_per_body_step, bullet.microseconds_per_body_step,
               ours.microseconds_per_body_step / bullet.microseconds_per_body_step,
               ours_two.microseconds_per_body_step / bullet.microseconds_per_body_step, motion,
-              ours.penetration * 1e3, bullet.penetration * 1e3);
-  if (ours_two.creep != ours.creep || ours_two.penetration != ours.penetration) {
+              ours.penetration * 1e3, bullet.penetration * 1e3, ours.detected * 1e3, bullet.detected * 1e3);
+  if (ours_two.creep != ours.creep || ours_two.detected != ours.detected || measured.creep != ours.creep) {
     std::printf("(the two-thread run moved otherwise: creep %.17g against %.17g m)\n", ours_two.creep, ours.creep);
   }
   std::fflush(stdout);
@@ -322,8 +420,8 @@ int main(int argc, char** argv) {
               iterations, resting.settle * kH, resting.steps * kH, drop.steps * kH);
   std::printf("| scene | bodies | package µs/body-step, 1 thread | 2 threads | Bullet µs/body-step | package/Bullet, "
               "1 thread | 2 threads | sag mm (package / Bullet) | creep mm (package / Bullet) | deepest mm (package / "
-              "Bullet) |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+              "Bullet) | deepest as detected, mm (package before its solve / Bullet's manifolds) |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::vector<std::size_t> counts;
   for (int i = 1; i < argc; ++i) counts.push_back(static_cast<std::size_t>(std::atol(argv[i])));
   if (counts.empty()) counts = {100, 1000};
