@@ -201,7 +201,7 @@ void Scene::stepColliders(std::int64_t steps, SceneStepResult& result) {
     }
     if (!any) break;
     std::fill(collider_failed_.begin(), collider_failed_.end(), StepStatus::kOk);
-    contact_->step(arrays, collider_running_, dt_, collider_failed_, pool_.get());
+    contact_->step(arrays, collider_running_, dt_, collider_failed_, pool_.get(), bodies_per_block_);
     for (std::size_t k = 0; k < colliders.size(); ++k) {
       BodyRecord& record = records_[colliders[k]];
       if (!collider_running_[k]) continue;

@@ -87,7 +87,8 @@ class Scene {
   /// 1, the default: the caller alone). Bodies go to the threads in blocks of `bodies_per_block` (≥ 1), so a
   /// scene of no more bodies runs on the caller whatever this says. Every body's arithmetic is the same on
   /// any thread and in any block: the trajectories do not depend on either (tested bit for bit). The
-  /// colliding bodies and their contact step run on the caller.
+  /// colliding bodies' free steps go to the threads in blocks of the same size, and their contact solve in
+  /// blocks of islands; the rest of the contact step runs on the caller.
   void setThreads(std::size_t threads, std::size_t bodies_per_block = kBodiesPerBlock);
   std::size_t threads() const { return pool_->threads(); }
   /// A block of 64 bodies is enough rk4 work per step to pay for handing it to another thread

@@ -30,6 +30,19 @@ void ContactStep::addContact(const ContactPoint& point, const SceneBodies& bodie
   SolverContact c;
   c.a = solverIndex(bodies, point.a);
   c.b = solverIndex(bodies, point.b);
+  std::pair<Eigen::Vector3d, Eigen::Vector3d> anchors;
+  PairLookup lookup;
+  makeContact(point, bodies, resting, lookup, c, anchors);
+  solver_contacts_.push_back(c);
+  solver_points_.push_back(&point);
+  solver_anchors_.push_back(anchors);
+}
+
+void ContactStep::makeContact(const ContactPoint& point, const SceneBodies& bodies, bool resting, PairLookup& lookup,
+                              SolverContact& c, std::pair<Eigen::Vector3d, Eigen::Vector3d>& anchors) const {
+  const std::size_t a = c.a, b = c.b;
+  c = SolverContact();
+  c.a = a, c.b = b;
   if (c.a != kEnvironment) c.r_a = point.on_a - bodies.states[colliders_[point.a]].p_WB;
   if (c.b != kEnvironment) c.r_b = point.on_b - bodies.states[colliders_[point.b]].p_WB;
   c.n = point.normal;
@@ -39,27 +52,24 @@ void ContactStep::addContact(const ContactPoint& point, const SceneBodies& bodie
   c.friction = material.friction;
   // A pair that was already touching rests or slides: it does not bounce again. A speculative point is not
   // touching: its impulse stops an arrival, so the step does not move its body on by c h Δv (solver_islands).
-  c.sustained = resting && wasTouching(pairKey(point.a, point.b)) && !point.speculative;
+  const bool touching = resting && wasTouching(pairKey(point.a, point.b), lookup);
+  c.sustained = touching && !point.speculative;
   c.restitution = c.sustained ? 0.0 : material.restitution;
-  const WarmPoint* last = resting && wasTouching(pairKey(point.a, point.b)) ? warmStart(c, point, bodies) : nullptr;
+  const WarmPoint* last = touching ? warmStart(c, point, bodies, lookup) : nullptr;
   // A point that stuck last step keeps the anchors where it began to stick, unless one of them has left the
   // point by more than the warm-start match.
-  std::pair<Eigen::Vector3d, Eigen::Vector3d> anchors(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
-  if (last != nullptr && last->anchored && !point.speculative) {
-    const bool lower_a = point.a < point.b;
-    const Eigen::Vector3d& on_a = lower_a ? last->anchor_lo : last->anchor_hi;
-    const Eigen::Vector3d& on_b = lower_a ? last->anchor_hi : last->anchor_lo;
-    const Eigen::Vector3d A = inWorld(point.a, on_a, bodies), B = inWorld(point.b, on_b, bodies);
-    if ((A - point.on_a).squaredNorm() < kWarmStartMatch * kWarmStartMatch &&
-        (B - point.on_b).squaredNorm() < kWarmStartMatch * kWarmStartMatch) {
-      c.anchored = true;
-      c.anchor_gap = Eigen::Vector2d(c.t1.dot(A - B), c.t2.dot(A - B));
-      anchors = {on_a, on_b};
-    }
+  anchors = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  if (last == nullptr || !last->anchored || point.speculative) return;
+  const bool lower_a = point.a < point.b;
+  const Eigen::Vector3d& on_a = lower_a ? last->anchor_lo : last->anchor_hi;
+  const Eigen::Vector3d& on_b = lower_a ? last->anchor_hi : last->anchor_lo;
+  const Eigen::Vector3d A = inWorld(point.a, on_a, bodies), B = inWorld(point.b, on_b, bodies);
+  if ((A - point.on_a).squaredNorm() < kWarmStartMatch * kWarmStartMatch &&
+      (B - point.on_b).squaredNorm() < kWarmStartMatch * kWarmStartMatch) {
+    c.anchored = true;
+    c.anchor_gap = Eigen::Vector2d(c.t1.dot(A - B), c.t2.dot(A - B));
+    anchors = {on_a, on_b};
   }
-  solver_contacts_.push_back(c);
-  solver_points_.push_back(&point);
-  solver_anchors_.push_back(anchors);
 }
 
 Eigen::Vector3d ContactStep::inObjectFrame(std::size_t object, const Eigen::Vector3d& p_W,
@@ -80,18 +90,18 @@ Eigen::Vector3d ContactStep::localPoint(const ContactPoint& point, const SceneBo
 }
 
 const ContactStep::WarmPoint* ContactStep::warmStart(SolverContact& c, const ContactPoint& point,
-                                                     const SceneBodies& bodies) const {
+                                                     const SceneBodies& bodies, PairLookup& lookup) const {
   const std::uint64_t key = pairKey(point.a, point.b);
-  if (key != warm_memo_key_) {
+  if (key != lookup.warm_key) {
     WarmPoint probe{};
     probe.key = key;
     const auto found = std::equal_range(warm_.begin(), warm_.end(), probe);
-    warm_memo_key_ = key;
-    warm_memo_begin_ = static_cast<std::size_t>(found.first - warm_.begin());
-    warm_memo_end_ = static_cast<std::size_t>(found.second - warm_.begin());
+    lookup.warm_key = key;
+    lookup.warm_begin = static_cast<std::size_t>(found.first - warm_.begin());
+    lookup.warm_end = static_cast<std::size_t>(found.second - warm_.begin());
   }
-  const auto range = std::make_pair(warm_.begin() + static_cast<std::ptrdiff_t>(warm_memo_begin_),
-                                    warm_.begin() + static_cast<std::ptrdiff_t>(warm_memo_end_));
+  const auto range = std::make_pair(warm_.begin() + static_cast<std::ptrdiff_t>(lookup.warm_begin),
+                                    warm_.begin() + static_cast<std::ptrdiff_t>(lookup.warm_end));
   if (range.first == range.second) return nullptr;
   const WarmPoint* best = nullptr;
   if (point.feature >= 0) {  // a half-space contact: the same corner of the same body
@@ -114,44 +124,53 @@ const ContactStep::WarmPoint* ContactStep::warmStart(SolverContact& c, const Con
   return best;
 }
 
-void ContactStep::rememberContacts(const SceneBodies& bodies, double h) {
-  warm_next_.clear();
-  for (std::size_t i = 0; i < solver_contacts_.size(); ++i) {
-    const SolverContact& c = solver_contacts_[i];
-    const ContactPoint& point = *solver_points_[i];
-    const Eigen::Vector3d friction = c.friction_impulse.x() * c.t1 + c.friction_impulse.y() * c.t2;
-    // Anchored next step (docs/contact.md, step 6), only after a solve that did not converge and only for a
-    // point that does not slide (its slip in the solve's last sweep moves it by less than kStickingSlip of
-    // the slop in the step). One that was anchored keeps its anchors while its friction stays inside the disc
-    // (or it is not pressed for a step); one that starts to stick (pressed, its friction within
-    // kStartingFriction of the disc's radius) anchors where it is now, on each body as the body now stands
-    // (the anchors then coincide in the tangent plane). Never on a curved surface: a rolling body's contact
-    // point moves over its surface while its material points do not slip, and anchors left behind would hold
-    // it back (a sphere rolling down an incline lost 1.5e-6 of its distance in 1 s at h = 0.25 ms).
-    const double slip_limit = kStickingSlip * settings_.penetration_slop / h;
-    const bool slow = c.slip_squared < slip_limit * slip_limit;
-    const double limit = c.friction * c.normal_impulse, f2 = c.friction_impulse.squaredNorm();
-    const bool starts = !c.anchored && !point.speculative && !curved_[point.a] && !curved_[point.b] && c.normal_impulse > 0.0 &&
-                        f2 < kStartingFriction * kStartingFriction * limit * limit;
-    const bool keeps = c.anchored && (c.normal_impulse == 0.0 || f2 < limit * limit);
-    const bool sticking = !islands_.converged(i) && slow && (starts || keeps);
-    std::pair<Eigen::Vector3d, Eigen::Vector3d> anchors = solver_anchors_[i];
-    if (sticking && starts) {
-      anchors = {inObjectFrame(point.a, point.on_a, bodies), inObjectFrame(point.b, point.on_b, bodies)};
-    }
-    const bool lower_a = point.a < point.b;
-    warm_next_.push_back({pairKey(point.a, point.b), point.feature,
-                          point.feature >= 0 ? Eigen::Vector3d::Zero() : localPoint(point, bodies), c.normal_impulse,
-                          (lower_a ? 1.0 : -1.0) * friction, sticking, lower_a ? anchors.first : anchors.second,
-                          lower_a ? anchors.second : anchors.first});
-    if (!recording_ || point.speculative) continue;  // a report lists what touches
-    const double depth = std::max(0.0, -point.distance);
-    if (world_->isBody(point.a)) {
-      contacts_[point.a].push_back({partner(point.b), point.on_a, c.n, depth, c.normal_impulse, friction});
-    }
-    if (world_->isBody(point.b)) {
-      contacts_[point.b].push_back({partner(point.a), point.on_b, -c.n, depth, c.normal_impulse, -friction});
-    }
+ContactStep::WarmPoint ContactStep::warmPointOf(std::size_t i, const SceneBodies& bodies, double h) const {
+  const SolverContact& c = solver_contacts_[i];
+  const ContactPoint& point = *solver_points_[i];
+  const Eigen::Vector3d friction = c.friction_impulse.x() * c.t1 + c.friction_impulse.y() * c.t2;
+  // Anchored next step (docs/contact.md, step 6), only after a solve that did not converge and only for a
+  // point that does not slide (its slip in the solve's last sweep moves it by less than kStickingSlip of
+  // the slop in the step). One that was anchored keeps its anchors while its friction stays inside the disc
+  // (or it is not pressed for a step); one that starts to stick (pressed, its friction within
+  // kStartingFriction of the disc's radius) anchors where it is now, on each body as the body now stands
+  // (the anchors then coincide in the tangent plane). Never on a curved surface: a rolling body's contact
+  // point moves over its surface while its material points do not slip, and anchors left behind would hold
+  // it back (a sphere rolling down an incline lost 1.5e-6 of its distance in 1 s at h = 0.25 ms).
+  const double slip_limit = kStickingSlip * settings_.penetration_slop / h;
+  const bool slow = c.slip_squared < slip_limit * slip_limit;
+  const double limit = c.friction * c.normal_impulse, f2 = c.friction_impulse.squaredNorm();
+  const bool starts = !c.anchored && !point.speculative && !curved_[point.a] && !curved_[point.b] &&
+                      c.normal_impulse > 0.0 && f2 < kStartingFriction * kStartingFriction * limit * limit;
+  const bool keeps = c.anchored && (c.normal_impulse == 0.0 || f2 < limit * limit);
+  const bool sticking = !islands_.converged(i) && slow && (starts || keeps);
+  std::pair<Eigen::Vector3d, Eigen::Vector3d> anchors = solver_anchors_[i];
+  if (sticking && starts) {
+    anchors = {inObjectFrame(point.a, point.on_a, bodies), inObjectFrame(point.b, point.on_b, bodies)};
+  }
+  const bool lower_a = point.a < point.b;
+  return {pairKey(point.a, point.b), point.feature,
+          point.feature >= 0 ? Eigen::Vector3d::Zero() : localPoint(point, bodies), c.normal_impulse,
+          (lower_a ? 1.0 : -1.0) * friction, sticking, lower_a ? anchors.first : anchors.second,
+          lower_a ? anchors.second : anchors.first};
+}
+
+void ContactStep::reportContact(std::size_t i) {
+  const SolverContact& c = solver_contacts_[i];
+  const ContactPoint& point = *solver_points_[i];
+  if (point.speculative) return;  // a report lists what touches
+  const Eigen::Vector3d friction = c.friction_impulse.x() * c.t1 + c.friction_impulse.y() * c.t2;
+  const double depth = std::max(0.0, -point.distance);
+  if (world_->isBody(point.a)) {
+    contacts_[point.a].push_back({partner(point.b), point.on_a, c.n, depth, c.normal_impulse, friction});
+  }
+  if (world_->isBody(point.b)) {
+    contacts_[point.b].push_back({partner(point.a), point.on_b, -c.n, depth, c.normal_impulse, -friction});
+  }
+}
+
+void ContactStep::rememberContacts() {
+  if (recording_) {
+    for (std::size_t i = 0; i < solver_contacts_.size(); ++i) reportContact(i);
   }
   if (sleep_.anyAsleep()) {
     for (const WarmPoint& w : warm_) {
@@ -165,7 +184,6 @@ void ContactStep::rememberContacts(const SceneBodies& bodies, double h) {
   std::sort(warm_order_.begin(), warm_order_.end());
   warm_.clear();
   for (const auto& [key, i] : warm_order_) warm_.push_back(warm_next_[i]);
-  warm_memo_key_ = ~std::uint64_t{0};
 }
 
 }  // namespace contact

@@ -75,11 +75,15 @@ std::uint64_t ContactStep::pairKey(std::size_t a, std::size_t b) const {
 }
 
 bool ContactStep::wasTouching(std::uint64_t key) const {
-  if (key != touching_memo_key_) {
-    touching_memo_ = std::binary_search(touching_.begin(), touching_.end(), key);
-    touching_memo_key_ = key;
+  return std::binary_search(touching_.begin(), touching_.end(), key);
+}
+
+bool ContactStep::wasTouching(std::uint64_t key, PairLookup& lookup) const {
+  if (key != lookup.touching_key) {
+    lookup.touching = wasTouching(key);
+    lookup.touching_key = key;
   }
-  return touching_memo_;
+  return lookup.touching;
 }
 
 ContactPartner ContactStep::partner(std::size_t object) const {
@@ -171,11 +175,9 @@ void ContactStep::restart(const std::vector<State>& states) {
   detectPoints();
   touching_.clear();
   warm_.clear();
-  warm_memo_key_ = ~std::uint64_t{0};
   for (const ContactPoint& point : points_) touching_.push_back(pairKey(point.a, point.b));
   std::sort(touching_.begin(), touching_.end());
   touching_.erase(std::unique(touching_.begin(), touching_.end()), touching_.end());
-  touching_memo_key_ = ~std::uint64_t{0};
   for (auto& list : contacts_) list.clear();
   impacts_.clear();
   statistics_ = ContactStatistics();
@@ -184,8 +186,9 @@ void ContactStep::restart(const std::vector<State>& states) {
 }
 
 void ContactStep::step(SceneBodies& bodies, const std::vector<char>& running, double h,
-                       std::vector<StepStatus>& failed, ThreadPool* pool) {
+                       std::vector<StepStatus>& failed, ThreadPool* pool, std::size_t bodies_per_block) {
   pool_ = pool;
+  bodies_per_block_ = std::max<std::size_t>(1, bodies_per_block);
   if (sleep_.anyAsleep()) wakeReachedIslands(bodies, running, h);
   syncSleep();  // islands woken from outside (a new input, a force model) leave Bullet's sleep here
   awake_.resize(colliders_.size());
@@ -209,18 +212,21 @@ void ContactStep::stepSplitting(SceneBodies& bodies, const std::vector<char>& ru
 void ContactStep::stepWhole(SceneBodies& bodies, const std::vector<char>& running, double h,
                             std::vector<StepStatus>& failed) {
   const std::size_t n = colliders_.size();
-  // 1. Free motion: every colliding body by its own integrator, as if nothing touched it.
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::size_t body = colliders_[k];
-    start_[k] = bodies.states[body];
-    if (!running[k]) continue;
-    const StepStatus status =
-        bodies.integrators[body].step(bodies.models[body], bodies.terms[body], bodies.inputs[body], h, bodies.states[body]);
-    if (status != StepStatus::kOk) {
-      failed[k] = status;
-      bodies.states[body] = start_[k];
+  // 1. Free motion: every colliding body by its own integrator, as if nothing touched it (each on its own:
+  // spread over the pool).
+  forRanges(n, bodies_per_block_, [&](std::size_t first, std::size_t end) {
+    for (std::size_t k = first; k < end; ++k) {
+      const std::size_t body = colliders_[k];
+      start_[k] = bodies.states[body];
+      if (!running[k]) continue;
+      const StepStatus status = bodies.integrators[body].step(bodies.models[body], bodies.terms[body],
+                                                              bodies.inputs[body], h, bodies.states[body]);
+      if (status != StepStatus::kOk) {
+        failed[k] = status;
+        bodies.states[body] = start_[k];
+      }
     }
-  }
+  });
   placeAll(bodies.states);
   detectPoints(&bodies, h);
   // 2. Impacts that begin within the step, each alone on its bodies, are resolved at their time.
@@ -252,9 +258,8 @@ void ContactStep::stepWhole(SceneBodies& bodies, const std::vector<char>& runnin
     for (auto& list : contacts_) list.clear();
     ++statistics_.refused_steps;
     touching_.clear();
-    touching_memo_key_ = ~std::uint64_t{0};
     warm_.clear();
-    warm_memo_key_ = ~std::uint64_t{0};
+
   }
 }
 
@@ -263,34 +268,56 @@ void ContactStep::startSolverLists() {
   solver_body_of_.assign(1, kUnassigned);
 }
 
-std::size_t ContactStep::solverIndex(const SceneBodies& bodies, std::size_t object) {
+std::size_t ContactStep::solverSlot(std::size_t object) {
   if (!world_->isBody(object)) return kEnvironment;
   if (solver_of_[object] != kUnassigned) return solver_of_[object];
   // A sleeping body in a contact with an awake one: wakeReachedIslands wakes it before the step whenever the
   // awake body's reach bound holds; should it not, the island wakes now and moves with the solve.
   wake(object);
-  const std::size_t body = colliders_[object];
+  solver_of_[object] = solver_bodies_.size();
+  solver_bodies_.emplace_back();
+  solver_body_of_.push_back(object);
+  return solver_of_[object];
+}
+
+void ContactStep::fillSolverBody(const SceneBodies& bodies, std::size_t s) {
+  const std::size_t body = colliders_[solver_body_of_[s]];
   const MassProperties& mass = bodies.models[body].mass;
   const State& state = bodies.states[body];
-  SolverBody solver;
+  SolverBody& solver = solver_bodies_[s];
+  solver = SolverBody();
   solver.inverse_mass = mass.inverseMass();
   const Eigen::Matrix3d R = state.q_WB.toRotationMatrix();
   solver.inverse_inertia_W = R * mass.inverseInertia() * R.transpose();
   solver.v = state.P_W * mass.inverseMass();
   solver.w = solver.inverse_inertia_W * state.L_W;
-  solver_of_[object] = solver_bodies_.size();
-  solver_bodies_.push_back(solver);
-  solver_body_of_.push_back(object);
-  return solver_of_[object];
 }
 
-void ContactStep::buildSolverLists(const SceneBodies& bodies) {
+std::size_t ContactStep::solverIndex(const SceneBodies& bodies, std::size_t object) {
+  const std::size_t bodies_before = solver_bodies_.size();
+  const std::size_t s = solverSlot(object);
+  if (solver_bodies_.size() > bodies_before) fillSolverBody(bodies, s);
+  return s;
+}
+
+void ContactStep::forRanges(std::size_t count, std::size_t per_block,
+                            const std::function<void(std::size_t, std::size_t)>& body) {
+  const std::size_t blocks = (count + per_block - 1) / per_block;
+  if (pool_ == nullptr || pool_->threads() == 1 || blocks < 2) {
+    body(0, count);
+    return;
+  }
+  pool_->parallelFor(blocks, [&](std::size_t block) { body(block * per_block, std::min(count, (block + 1) * per_block)); });
+}
+
+void ContactStep::buildSolverLists() {
   solver_contacts_.clear();
   solver_points_.clear();
   solver_anchors_.clear();
   startSolverLists();
   admitted_.clear();
   admitted_links_.clear();
+  PairLookup lookup;
   std::uint64_t admitted_pair = ~std::uint64_t{0};
   for (std::size_t i = 0; i < points_.size(); ++i) {
     const ContactPoint& point = points_[i];
@@ -299,7 +326,7 @@ void ContactStep::buildSolverLists(const SceneBodies& bodies) {
     if (point.speculative) {
       if (key != admitted_pair) continue;
     } else {
-      if (point.distance > (wasTouching(key) ? settings_.penetration_slop : 0.0)) continue;
+      if (point.distance > (wasTouching(key, lookup) ? settings_.penetration_slop : 0.0)) continue;
       admitted_pair = key;
     }
     statistics_.max_penetration = std::max(statistics_.max_penetration, -point.distance);
@@ -307,41 +334,62 @@ void ContactStep::buildSolverLists(const SceneBodies& bodies) {
     admitted_links_.emplace_back(point.a, point.b);
   }
   // The solver's lists island by island (solver_islands.hpp): a body enters them with its island's first
-  // contact, so each island's bodies follow each other too.
+  // contact, so each island's bodies follow each other too. Numbered here, in order (solverSlot may wake a
+  // body); each block of islands fills its own bodies and contacts as the solve begins it (fillBlock).
   islands_.group(admitted_links_, colliders_.size());
+  const std::size_t count = admitted_.size();
+  solver_contacts_.resize(count);
+  solver_points_.resize(count);
+  solver_anchors_.resize(count);
   island_body_start_.clear();
   for (std::size_t island = 0; island < islands_.islands(); ++island) {
     island_body_start_.push_back(solver_bodies_.size());
     for (std::size_t j = islands_.islandStart(island); j < islands_.islandStart(island + 1); ++j) {
-      addContact(points_[admitted_[islands_.order()[j]]], bodies, true);
+      const ContactPoint& point = points_[admitted_[islands_.order()[j]]];
+      solver_points_[j] = &point;
+      solver_contacts_[j].a = solverSlot(point.a);
+      solver_contacts_[j].b = solverSlot(point.b);
     }
   }
   island_body_start_.push_back(solver_bodies_.size());
 }
 
-void ContactStep::solveResting(SceneBodies& bodies, double h) {
-  buildSolverLists(bodies);
-  // A sleeping island's pairs are still touching (not tested while it sleeps): kept for when it wakes.
-  kept_touching_.clear();
-  if (sleep_.anyAsleep()) {
-    for (std::uint64_t key : touching_) {
-      if (sleepingPair(key)) kept_touching_.push_back(key);
-    }
+void ContactStep::fillBlock(const SceneBodies& bodies, std::size_t first_island, std::size_t end_island) {
+  for (std::size_t s = island_body_start_[first_island]; s < island_body_start_[end_island]; ++s) {
+    fillSolverBody(bodies, s);
   }
-  touching_.swap(kept_touching_);
-  for (const ContactPoint* point : solver_points_) touching_.push_back(pairKey(point->a, point->b));
-  std::sort(touching_.begin(), touching_.end());
-  touching_.erase(std::unique(touching_.begin(), touching_.end()), touching_.end());
-  touching_memo_key_ = ~std::uint64_t{0};
+  PairLookup lookup;
+  for (std::size_t j = islands_.islandStart(first_island); j < islands_.islandStart(end_island); ++j) {
+    makeContact(*solver_points_[j], bodies, true, lookup, solver_contacts_[j], solver_anchors_[j]);
+  }
+}
+
+void ContactStep::finishBlock(SceneBodies& bodies, double h, std::size_t first_island, std::size_t end_island) {
+  for (std::size_t s = island_body_start_[first_island]; s < island_body_start_[end_island]; ++s) {
+    const std::size_t k = solver_body_of_[s];
+    State& state = bodies.states[colliders_[k]];
+    state.P_W += solver_bodies_[s].dP;
+    state.L_W += solver_bodies_[s].dL;
+    state.p_WB += solver_bodies_[s].dx;
+    rotate(state.q_WB, solver_bodies_[s].dtheta);
+    solver_of_[k] = kUnassigned;
+  }
+  for (std::size_t i = islands_.islandStart(first_island); i < islands_.islandStart(end_island); ++i) {
+    warm_next_[i] = warmPointOf(i, bodies, h);
+  }
+}
+
+void ContactStep::solveResting(SceneBodies& bodies, double h) {
+  buildSolverLists();
   if (recording_) {
     for (std::size_t k = 0; k < contacts_.size(); ++k) {
       if (!sleep_.asleep(k)) contacts_[k].clear();  // a sleeping body reports its contacts as it fell asleep
     }
   }
   if (solver_contacts_.empty()) {
+    rememberTouching();
     warm_.erase(std::remove_if(warm_.begin(), warm_.end(), [&](const WarmPoint& w) { return !sleepingPair(w.key); }),
                 warm_.end());
-    warm_memo_key_ = ~std::uint64_t{0};
     for (std::size_t s = 1; s < solver_bodies_.size(); ++s) solver_of_[solver_body_of_[s]] = kUnassigned;
     return;
   }
@@ -355,17 +403,29 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
   solve.penetration_slop = settings_.penetration_slop;
   solve.position_correction = settings_.position_correction;
   solve.lanes.wide_instructions = wide_lanes_;
-  islands_.solve(solver_contacts_, solver_bodies_, island_body_start_, solve, pool_);
-  for (std::size_t s = 1; s < solver_bodies_.size(); ++s) {  // 0 is the environment
-    const std::size_t k = solver_body_of_[s];
-    State& state = bodies.states[colliders_[k]];
-    state.P_W += solver_bodies_[s].dP;
-    state.L_W += solver_bodies_[s].dL;
-    state.p_WB += solver_bodies_[s].dx;
-    rotate(state.q_WB, solver_bodies_[s].dtheta);
-    solver_of_[k] = kUnassigned;
+  // Block by block on the pool: the lists filled (against last step's touching pairs and warm points),
+  // solved, the moves applied and the warm points made.
+  warm_next_.resize(solver_contacts_.size());
+  islands_.solve(
+      solver_contacts_, solver_bodies_, island_body_start_, solve, pool_,
+      [&](std::size_t, std::size_t first, std::size_t end) { fillBlock(bodies, first, end); },
+      [&](std::size_t, std::size_t first, std::size_t end) { finishBlock(bodies, h, first, end); });
+  rememberTouching();
+  rememberContacts();
+}
+
+void ContactStep::rememberTouching() {
+  // A sleeping island's pairs are still touching (not tested while it sleeps): kept for when it wakes.
+  kept_touching_.clear();
+  if (sleep_.anyAsleep()) {
+    for (std::uint64_t key : touching_) {
+      if (sleepingPair(key)) kept_touching_.push_back(key);
+    }
   }
-  rememberContacts(bodies, h);
+  touching_.swap(kept_touching_);
+  for (const ContactPoint* point : solver_points_) touching_.push_back(pairKey(point->a, point->b));
+  std::sort(touching_.begin(), touching_.end());
+  touching_.erase(std::unique(touching_.begin(), touching_.end()), touching_.end());
 }
 
 }  // namespace contact

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -53,10 +54,11 @@ class ContactStep {
 
   /// One step of h for the colliding bodies whose `running[k]` is set. A body whose free step fails, or
   /// whose result is not finite, keeps its state from before the step and gets `failed[k]`; such a step is
-  /// counted as refused and reports no contacts. The resting solve's islands go to `pool` (null: the
-  /// caller's thread alone); the result does not depend on its thread count.
+  /// counted as refused and reports no contacts. The free steps (in blocks of `bodies_per_block`) and the
+  /// resting solve's islands go to `pool` (null: the caller's thread alone); the result does not depend on
+  /// its thread count or the block size.
   void step(SceneBodies& bodies, const std::vector<char>& running, double h, std::vector<StepStatus>& failed,
-            ThreadPool* pool = nullptr);
+            ThreadPool* pool = nullptr, std::size_t bodies_per_block = 64);
 
   /// Empty if colliding body k may be at `state` (apart from the environment and the other bodies as they
   /// stand in `states`, within the slop, and not inside a closed environment mesh); otherwise a message
@@ -97,8 +99,32 @@ class ContactStep {
     double f_lo, f_hi; // signed distances there [m]
     bool swept;
   };
+  // Warm start: last step's impulses by pair and by where the point sits on the body (its own frame).
+  struct WarmPoint {
+    std::uint64_t key;
+    int feature;            // ≥ 0: matched by feature; otherwise by position on the body
+    Eigen::Vector3d local;
+    double normal_impulse;
+    Eigen::Vector3d friction_impulse_W;
+    // A sticking point's anchors (docs/contact.md, step 6) on the pair's lower and higher object, each in
+    // that object's frame (the world's for the environment); anchored is false for a point that slid, and
+    // after a step whose solve converged.
+    bool anchored;
+    Eigen::Vector3d anchor_lo, anchor_hi;
+    bool operator<(const WarmPoint& other) const { return key < other.key; }
+  };
+  // What a pass over the points last looked up for a pair (a pair's points follow each other, and each asks
+  // several times): whether it was touching, and its run of warm_. Each pass (and each thread of one) has its
+  // own, dropped at its end: touching_ and warm_ do not change within a pass.
+  struct PairLookup {
+    std::uint64_t touching_key = ~std::uint64_t{0};
+    bool touching = false;
+    std::uint64_t warm_key = ~std::uint64_t{0};
+    std::size_t warm_begin = 0, warm_end = 0;
+  };
   std::uint64_t pairKey(std::size_t a, std::size_t b) const;
   bool wasTouching(std::uint64_t key) const;
+  bool wasTouching(std::uint64_t key, PairLookup& lookup) const;
   ContactPartner partner(std::size_t object) const;
   ContactMaterial combined(std::size_t a, std::size_t b) const;
   void placeAll(const std::vector<State>& states);
@@ -146,20 +172,40 @@ class ContactStep {
   std::vector<std::uint64_t> kept_touching_;
 
   void startSolverLists();
+  // A collision object's solver body: solverSlot numbers it (and wakes it if it sleeps), fillSolverBody
+  // gives solver body s its velocities and inertia from the body's state; solverIndex does both at once.
+  std::size_t solverSlot(std::size_t object);
+  void fillSolverBody(const SceneBodies& bodies, std::size_t s);
   std::size_t solverIndex(const SceneBodies& bodies, std::size_t object);
+  // A solver contact from a detected point whose solver bodies c.a, c.b are numbered already, with its warm
+  // start and anchors (`resting`: in the resting solve; a located impact's are not warm-started).
+  void makeContact(const ContactPoint& point, const SceneBodies& bodies, bool resting, PairLookup& lookup,
+                   SolverContact& c, std::pair<Eigen::Vector3d, Eigen::Vector3d>& anchors) const;
   void addContact(const ContactPoint& point, const SceneBodies& bodies, bool resting);
-  // The admitted points of the step as the solver's lists, island by island.
-  void buildSolverLists(const SceneBodies& bodies);
+  // What one solved contact leaves for the next step, and its reports while recording.
+  WarmPoint warmPointOf(std::size_t i, const SceneBodies& bodies, double h) const;
+  void reportContact(std::size_t i);
+  // Runs body(first, end) over [0, count) in blocks of about `per_block`, on the pool where it has threads.
+  void forRanges(std::size_t count, std::size_t per_block, const std::function<void(std::size_t, std::size_t)>& body);
+  // The admitted points of the step as the solver's lists, island by island: numbered here, filled by
+  // fillBlock for a block of islands [first_island, end_island).
+  void buildSolverLists();
+  void fillBlock(const SceneBodies& bodies, std::size_t first_island, std::size_t end_island);
   void solveResting(SceneBodies& bodies, double h);
-  // The solved contacts as next step's warm starts (with their anchors: only where the island's solve did not
-  // converge) and, while recording, as reports.
-  void rememberContacts(const SceneBodies& bodies, double h);
+  // After a block's solve: its bodies' states advanced by the impulses and moves, and its contacts as next
+  // step's warm starts (with their anchors: only where the island's solve did not converge).
+  void finishBlock(SceneBodies& bodies, double h, std::size_t first_island, std::size_t end_island);
+  // After the solve: the pairs touching now (and those of sleeping islands) for the next step; the reports
+  // while recording, and the warm points sorted by pair.
+  void rememberTouching();
+  void rememberContacts();
   SolverIslands islands_;
   std::vector<std::size_t> admitted_;  // scratch: the points the resting solve takes
   std::vector<std::pair<std::size_t, std::size_t>> admitted_links_;  // their objects
   std::vector<std::size_t> island_body_start_;  // per island: its first solver body (then one past the last)
   bool wide_lanes_ = true;
   ThreadPool* pool_ = nullptr;  // the scene's, for the islands; set for the duration of a step
+  std::size_t bodies_per_block_ = 64;  // the free steps' blocks on the pool; set with pool_
 
   std::unique_ptr<CollisionWorld> world_;
   std::vector<std::size_t> colliders_;
@@ -189,10 +235,6 @@ class ContactStep {
   std::vector<ContactPoint> points_, pair_points_;
   std::vector<char> moving_;  // scratch of detectPoints: per collider, whether it moves more than the slop
   std::vector<std::uint64_t> touching_, engaged_;
-  // wasTouching's last answer: a pair's points follow each other, and each asks it several times. Reset
-  // wherever touching_ changes.
-  mutable std::uint64_t touching_memo_key_ = ~std::uint64_t{0};
-  mutable bool touching_memo_ = false;
   std::vector<int> engagement_;             // engaged pairs per colliding body
   std::vector<Candidate> candidates_;
   std::vector<SolverBody> solver_bodies_;
@@ -203,30 +245,14 @@ class ContactStep {
   std::vector<std::vector<Contact>> contacts_;
   std::vector<ImpactEvent> impacts_;
   ContactStatistics statistics_;
-  // Warm start: last step's impulses by pair and by where the point sits on the body (its own frame).
-  struct WarmPoint {
-    std::uint64_t key;
-    int feature;            // ≥ 0: matched by feature; otherwise by position on the body
-    Eigen::Vector3d local;
-    double normal_impulse;
-    Eigen::Vector3d friction_impulse_W;
-    // A sticking point's anchors (docs/contact.md, step 6) on the pair's lower and higher object, each in
-    // that object's frame (the world's for the environment); anchored is false for a point that slid, and
-    // after a step whose solve converged.
-    bool anchored;
-    Eigen::Vector3d anchor_lo, anchor_hi;
-    bool operator<(const WarmPoint& other) const { return key < other.key; }
-  };
   Eigen::Vector3d localPoint(const ContactPoint& point, const SceneBodies& bodies) const;
-  const WarmPoint* warmStart(SolverContact& contact, const ContactPoint& point, const SceneBodies& bodies) const;
+  const WarmPoint* warmStart(SolverContact& contact, const ContactPoint& point, const SceneBodies& bodies,
+                             PairLookup& lookup) const;
   // A point between the world and a collision object's own frame (the environment's is the world's).
   Eigen::Vector3d inObjectFrame(std::size_t object, const Eigen::Vector3d& p_W, const SceneBodies& bodies) const;
   Eigen::Vector3d inWorld(std::size_t object, const Eigen::Vector3d& local, const SceneBodies& bodies) const;
   std::vector<WarmPoint> warm_, warm_next_;
   std::vector<std::pair<std::uint64_t, std::size_t>> warm_order_;  // scratch of rememberContacts
-  // warmStart's last pair and its run of warm_ (as wasTouching's memo); reset wherever warm_ changes.
-  mutable std::uint64_t warm_memo_key_ = ~std::uint64_t{0};
-  mutable std::size_t warm_memo_begin_ = 0, warm_memo_end_ = 0;
   // Per solver contact: the anchors it carries on a and on b (in those objects' frames); zeros if not anchored.
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> solver_anchors_;
 };

@@ -37,9 +37,10 @@ void ContactStep::findCandidates(SceneBodies& bodies, const std::vector<char>& r
     }
   }
   const std::size_t fast_impacts = candidates_.size();
+  PairLookup lookup;
   for (const ContactPoint& point : points_) {
     const std::uint64_t key = pairKey(point.a, point.b);
-    const bool touching = wasTouching(key);
+    const bool touching = wasTouching(key, lookup);
     if (point.distance > (touching ? settings_.penetration_slop : 0.0)) continue;
     // A pair's points come together (one manifold per pair, one pass per body and half-space).
     if (!engaged_.empty() && engaged_.back() == key) continue;

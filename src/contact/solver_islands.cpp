@@ -114,11 +114,26 @@ void SolverIslands::group(const std::vector<std::pair<std::size_t, std::size_t>>
     order_[j] = i;
     island_of_contact_[j] = island_of_point_[i];
   }
+  block_end_.clear();
+  std::size_t in_block = 0;
+  for (std::size_t island = 0; island < count; ++island) {
+    in_block += island_start_[island + 1] - island_start_[island];
+    if (in_block >= kContactsPerBlock || island + 1 == count) block_end_.push_back(island + 1), in_block = 0;
+  }
+}
+
+void SolverIslands::forEachBlock(ThreadPool* pool, const BlockWork& work) const {
+  const auto run = [&](std::size_t block) { work(block, block == 0 ? 0 : block_end_[block - 1], block_end_[block]); };
+  if (pool != nullptr && pool->threads() > 1 && block_end_.size() > 1) {
+    pool->parallelFor(block_end_.size(), run);
+  } else {
+    for (std::size_t block = 0; block < block_end_.size(); ++block) run(block);
+  }
 }
 
 void SolverIslands::solve(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies,
                           const std::vector<std::size_t>& body_start, const RestingSolveSettings& settings,
-                          ThreadPool* pool) {
+                          ThreadPool* pool, const BlockWork& before, const BlockWork& after) {
   const std::size_t count = islands();
   island_converged_.assign(count, 0);
   lift_share_.resize(bodies.size());
@@ -127,18 +142,12 @@ void SolverIslands::solve(std::vector<SolverContact>& contacts, std::vector<Solv
   const auto rangeOf = [&](std::size_t island) {
     return SolveRange{island_start_[island], island_start_[island + 1], body_start[island], body_start[island + 1]};
   };
-  block_end_.clear();
-  std::size_t in_block = 0;
-  for (std::size_t island = 0; island < count; ++island) {
-    in_block += island_start_[island + 1] - island_start_[island];
-    if (in_block >= kContactsPerBlock || island + 1 == count) block_end_.push_back(island + 1), in_block = 0;
-  }
   ranges_.resize(count);
   for (std::size_t island = 0; island < count; ++island) ranges_[island] = rangeOf(island);
   if (block_solvers_.size() < block_end_.size()) block_solvers_.resize(block_end_.size());
   // A block's islands are prepared, swept together in the lanes, and finished one by one.
-  const auto solveBlock = [&](std::size_t block) {
-    const std::size_t begin = block == 0 ? 0 : block_end_[block - 1], end = block_end_[block];
+  forEachBlock(pool, [&](std::size_t block, std::size_t begin, std::size_t end) {
+    if (before) before(block, begin, end);
     for (std::size_t island = begin; island < end; ++island) {
       prepareContacts(contacts, bodies, shared.options, ranges_[island]);
     }
@@ -147,12 +156,8 @@ void SolverIslands::solve(std::vector<SolverContact>& contacts, std::vector<Solv
     for (std::size_t island = begin; island < end; ++island) {
       finishRestingContacts(contacts, bodies, shared, ranges_[island], lift_share_);
     }
-  };
-  if (pool != nullptr && pool->threads() > 1 && block_end_.size() > 1) {
-    pool->parallelFor(block_end_.size(), solveBlock);
-  } else {
-    for (std::size_t block = 0; block < block_end_.size(); ++block) solveBlock(block);
-  }
+    if (after) after(block, begin, end);
+  });
 }
 
 }  // namespace contact

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -56,12 +57,23 @@ class SolverIslands {
   /// Island i's points are order()[islandStart(i)] up to order()[islandStart(i + 1)] (exclusive).
   std::size_t islandStart(std::size_t island) const { return island_start_[island]; }
 
+  /// Work on a block: consecutive islands [first_island, end_island) with enough points between them to be
+  /// worth a hand-out to a thread (a block; docs/architecture.md).
+  using BlockWork = std::function<void(std::size_t block, std::size_t first_island, std::size_t end_island)>;
+  /// Calls `work` once per block of the last group(), spread over `pool` (may be null: the caller's thread).
+  /// What a block writes must depend on its islands alone, so that the result does not depend on the threads.
+  void forEachBlock(ThreadPool* pool, const BlockWork& work) const;
+
   /// Solves contacts made from the points in order() (contact j from point order()[j]) on `bodies` (0 the
   /// environment), island i's bodies being [body_start[i], body_start[i + 1]): afterwards every body has its
   /// dP, dL (the momentum the impulses give it) and dx, dtheta (how far they move it), and every contact its
-  /// impulses. `pool` may be null (everything on the caller's thread).
+  /// impulses. `pool` may be null (everything on the caller's thread). With `before` and `after`, each block
+  /// calls them on its islands before it prepares them and after it has finished them, on the same thread
+  /// (one hand-out per step for the caller's per-contact work as well; what they write must depend on the
+  /// block's islands alone).
   void solve(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies,
-             const std::vector<std::size_t>& body_start, const RestingSolveSettings& settings, ThreadPool* pool);
+             const std::vector<std::size_t>& body_start, const RestingSolveSettings& settings, ThreadPool* pool,
+             const BlockWork& before = {}, const BlockWork& after = {});
 
   /// Per contact of the last solve: whether its island's velocity solve converged.
   bool converged(std::size_t contact) const { return island_converged_[island_of_contact_[contact]] != 0; }
@@ -75,7 +87,7 @@ class SolverIslands {
   std::vector<std::size_t> order_, island_start_, next_;
   std::vector<std::size_t> island_of_contact_;  // = island_of_point_ in order()
   std::vector<char> island_converged_;
-  std::vector<std::size_t> block_end_;          // islands [block_end_[b−1], block_end_[b]) form block b
+  std::vector<std::size_t> block_end_;          // islands [block_end_[b−1], block_end_[b]) form block b (group())
   std::vector<SolveRange> ranges_;              // per island
   std::vector<LaneContactSolver> block_solvers_;  // per block: its lanes' buffers, kept between steps
   std::vector<double> lift_share_;              // per solver body

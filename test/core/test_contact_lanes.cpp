@@ -210,8 +210,8 @@ TEST(ContactLanes, FourAndEightLanesGiveTheBitsOfOneWithAndWithoutWideInstructio
         EXPECT_TRUE(a.normal_impulse == b.normal_impulse && a.friction_impulse == b.friction_impulse &&
                     a.slip_squared == b.slip_squared)
             << "contact " << k << ", " << lanes << " lanes, wide " << wide;
-        some_on_the_disc = some_on_the_disc ||
-                           a.friction_impulse.norm() > (1.0 - 1e-9) * a.friction * a.normal_impulse && a.normal_impulse > 0.0;
+        some_on_the_disc = some_on_the_disc || (a.friction_impulse.norm() > (1.0 - 1e-9) * a.friction * a.normal_impulse &&
+                                                a.normal_impulse > 0.0);
       }
     }
     EXPECT_TRUE(some_on_the_disc);  // the sliders' friction went through the disc's projection
