@@ -3,6 +3,8 @@
 // else the lists hold); and a scene with contact steps to the same bits on any number of threads.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <tuple>
 #include <vector>
@@ -142,10 +144,12 @@ TEST(ContactIslands, EachIslandConvergesOnItsOwnAndGetsWhatItWouldAlone) {
 // Stacks of 1 to 6 boxes and one of 40 (an island of more contacts than a thread's block), a ball dropped
 // onto the gap between two stacks (it joins their islands when it lands), a box thrown along the ground
 // into a stack, and a sphere rolling at the friction limit down a tilted block: contact of every kind.
-Scene mixedScene() {
+// With `sleep`, islands also fall asleep and are woken (by the landing ball, by the thrown box).
+Scene mixedScene(bool sleep = false) {
   ContactSetup setup;
   setup.environment = {reference::groundPlane(Eigen::Vector3d::UnitZ(), 0.5)};
-  setup.settings.sleep = false;
+  setup.settings.sleep = sleep;
+  setup.settings.sleep_time = 0.2;
   std::vector<BodyDefinition> bodies;
   const auto add = [&](const BodyDefinition& body, const CollisionShape& shape) {
     bodies.push_back(body);
@@ -168,12 +172,18 @@ Scene mixedScene() {
   return Scene(bodies, IntegratorType::kRk4, kH, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
 }
 
-TEST(ContactIslands, AContactSceneStepsToTheSameBitsOnAnyNumberOfThreads) {
-  const auto run = [](std::size_t threads) {
-    Scene scene = mixedScene();
+// The same bits on 1 to 4 threads (blocks of three bodies, so the colliders' free steps are split too), awake
+// throughout and with islands falling asleep and being woken.
+void expectSameBitsOnAnyNumberOfThreads(bool sleep) {
+  std::int64_t most_asleep = 0;
+  const auto run = [&](std::size_t threads) {
+    Scene scene = mixedScene(sleep);
     scene.setThreads(threads, 3);
     scene.setRecordContacts(true);
-    scene.step(700);
+    for (int i = 0; i < 70; ++i) {
+      scene.step(10);
+      most_asleep = std::max(most_asleep, scene.contactStatistics().sleeping_bodies);
+    }
     return scene;
   };
   const Scene reference = run(1);
@@ -181,6 +191,10 @@ TEST(ContactIslands, AContactSceneStepsToTheSameBitsOnAnyNumberOfThreads) {
   // The ball landed on the stacks beside it and the thrown box reached the stacks' row (not a scene at rest).
   ASSERT_LT(reference.state(ball).p_WB.z(), 0.7);
   ASSERT_GT(reference.state(ball + 1).p_WB.y(), -1.0);
+  if (sleep) {  // islands slept, and some were woken
+    ASSERT_GT(most_asleep, 0);
+    ASSERT_GT(reference.contactStatistics().wakes, 0);
+  }
   for (const std::size_t threads : {2, 3, 4}) {
     const Scene other = run(threads);
     for (std::size_t b = 0; b < reference.bodyCount(); ++b) {
@@ -196,6 +210,12 @@ TEST(ContactIslands, AContactSceneStepsToTheSameBitsOnAnyNumberOfThreads) {
       }
     }
   }
+}
+
+TEST(ContactIslands, AContactSceneStepsToTheSameBitsOnAnyNumberOfThreads) { expectSameBitsOnAnyNumberOfThreads(false); }
+
+TEST(ContactIslands, AContactSceneWithSleepingIslandsStepsToTheSameBitsOnAnyNumberOfThreads) {
+  expectSameBitsOnAnyNumberOfThreads(true);
 }
 
 TEST(ContactIslands, AContactSceneStepsToTheSameBitsWithAndWithoutWideInstructions) {
