@@ -180,6 +180,19 @@ double deepestContact(btCollisionWorld& world) {
 }
 
 
+// The static shapes in Bullet's terms, each handed to add(shape, pose): the plane through the origin, then
+// the walls.
+template <class Add>
+void addEnvironment(const Walls& walls, Add add) {
+  add(std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), 0.0), btTransform::getIdentity());
+  for (std::size_t i = 0; i < walls.centres.size(); ++i) {
+    const Eigen::Vector3d& c = walls.centres[i];
+    const Eigen::Vector3d half = 0.5 * walls.sizes[i];
+    add(std::make_unique<btBoxShape>(btVector3(half.x(), half.y(), half.z())),
+        btTransform(btQuaternion::getIdentity(), btVector3(c.x(), c.y(), c.z())));
+  }
+}
+
 // Bullet's collision detection alone over the package's bodies: the penetration in the states the package
 // hands out after a step, found as Bullet's world finds its own (which detects at the start of a step, on
 // the state its last step handed out), so that both engines' deepest contacts are the same quantity.
@@ -187,13 +200,9 @@ class PublishedDepth {
  public:
   PublishedDepth(const Placement& pieces, const Walls& walls)
       : dispatcher_(&configuration_), world_(&dispatcher_, &broadphase_, &configuration_) {
-    add(std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), 0.0), btTransform::getIdentity(), true);
-    for (std::size_t i = 0; i < walls.centres.size(); ++i) {
-      const Eigen::Vector3d& c = walls.centres[i];
-      const Eigen::Vector3d half = 0.5 * walls.sizes[i];
-      add(std::make_unique<btBoxShape>(btVector3(half.x(), half.y(), half.z())),
-          btTransform(btQuaternion::getIdentity(), btVector3(c.x(), c.y(), c.z())), true);
-    }
+    addEnvironment(walls, [&](std::unique_ptr<btCollisionShape> shape, const btTransform& pose) {
+      add(std::move(shape), pose, true);
+    });
     first_ = objects_.size();
     for (const Piece& piece : pieces) add(bulletShape(piece), btTransform::getIdentity(), false);
   }
@@ -332,13 +341,9 @@ Outcome runBullet(const Placement& pieces, const Walls& walls, const Run& run, i
     if (mass > 0.0) bodies.back()->setActivationState(DISABLE_DEACTIVATION);
     world.addRigidBody(bodies.back().get());
   };
-  add(std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), 0.0), 0.0, btVector3(0, 0, 0), btTransform::getIdentity());
-  for (std::size_t i = 0; i < walls.centres.size(); ++i) {
-    const Eigen::Vector3d& c = walls.centres[i];
-    const Eigen::Vector3d half = 0.5 * walls.sizes[i];
-    add(std::make_unique<btBoxShape>(btVector3(half.x(), half.y(), half.z())), 0.0, btVector3(0, 0, 0),
-        btTransform(btQuaternion::getIdentity(), btVector3(c.x(), c.y(), c.z())));
-  }
+  addEnvironment(walls, [&](std::unique_ptr<btCollisionShape> shape, const btTransform& pose) {
+    add(std::move(shape), 0.0, btVector3(0, 0, 0), pose);
+  });
   const std::size_t first = bodies.size();
   for (const Piece& piece : pieces) {
     const MassProperties mass = massOf(piece);
