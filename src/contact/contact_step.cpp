@@ -314,9 +314,8 @@ void ContactStep::forRanges(std::size_t count, std::size_t per_block,
 }
 
 void ContactStep::buildSolverLists() {
-  solver_contacts_.clear();
-  solver_points_.clear();
-  solver_anchors_.clear();
+  // The contacts and anchors are sized below and made whole by makeContact (not cleared first: a step's
+  // thousands of contacts would be constructed twice).
   startSolverLists();
   admitted_.clear();
   admitted_links_.clear();
