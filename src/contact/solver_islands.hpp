@@ -60,9 +60,6 @@ class SolverIslands {
   /// Work on a block: consecutive islands [first_island, end_island) with enough points between them to be
   /// worth a hand-out to a thread (a block; docs/architecture.md).
   using BlockWork = std::function<void(std::size_t block, std::size_t first_island, std::size_t end_island)>;
-  /// Calls `work` once per block of the last group(), spread over `pool` (may be null: the caller's thread).
-  /// What a block writes must depend on its islands alone, so that the result does not depend on the threads.
-  void forEachBlock(ThreadPool* pool, const BlockWork& work) const;
 
   /// Solves contacts made from the points in order() (contact j from point order()[j]) on `bodies` (0 the
   /// environment), island i's bodies being [body_start[i], body_start[i + 1]): afterwards every body has its
@@ -80,6 +77,9 @@ class SolverIslands {
 
  private:
   std::size_t root(std::size_t body);
+  /// Calls `work` once per block of the last group(), spread over `pool` (may be null: the caller's thread).
+  /// What a block writes must depend on its islands alone, so that the result does not depend on the threads.
+  void forEachBlock(ThreadPool* pool, const BlockWork& work) const;
 
   std::vector<std::size_t> parent_;             // union–find over bodies
   std::vector<std::size_t> island_of_root_;     // per body that is a root: its island
