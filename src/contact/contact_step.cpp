@@ -217,7 +217,8 @@ void ContactStep::stepWhole(SceneBodies& bodies, const std::vector<char>& runnin
   const std::size_t n = colliders_.size();
   // 1. Free motion: every colliding body by its own integrator, as if nothing touched it (each on its own:
   // spread over the pool).
-  forRanges(n, kFreeStepBlocks * bodies_per_block_, [&](std::size_t first, std::size_t end) {
+  const std::size_t per_block = bodies_per_block_ > SIZE_MAX / kFreeStepBlocks ? SIZE_MAX : kFreeStepBlocks * bodies_per_block_;
+  forRanges(n, per_block, [&](std::size_t first, std::size_t end) {
     for (std::size_t k = first; k < end; ++k) {
       const std::size_t body = colliders_[k];
       start_[k] = bodies.states[body];
@@ -305,7 +306,9 @@ std::size_t ContactStep::solverIndex(const SceneBodies& bodies, std::size_t obje
 
 void ContactStep::forRanges(std::size_t count, std::size_t per_block,
                             const std::function<void(std::size_t, std::size_t)>& body) {
-  const std::size_t blocks = (count + per_block - 1) / per_block;
+  // Any block size from 1 to SIZE_MAX: no sum or product here can wrap.
+  per_block = std::max<std::size_t>(1, per_block);
+  const std::size_t blocks = count / per_block + (count % per_block != 0 ? 1 : 0);
   if (pool_ == nullptr || pool_->threads() == 1 || blocks < 2) {
     body(0, count);
     return;

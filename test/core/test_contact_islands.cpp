@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <tuple>
 #include <vector>
 
@@ -213,6 +214,27 @@ void expectSameBitsOnAnyNumberOfThreads(bool sleep) {
 }
 
 TEST(ContactIslands, AContactSceneStepsToTheSameBitsOnAnyNumberOfThreads) { expectSameBitsOnAnyNumberOfThreads(false); }
+
+// Blocks of one body, of sizes whose multiple for the free steps would wrap around, and of the largest size:
+// the same bits as one thread, and no division by a wrapped block size.
+TEST(ContactIslands, AContactSceneStepsToTheSameBitsWithAnyBlockSize) {
+  const auto run = [](std::size_t threads, std::size_t per_block) {
+    Scene scene = mixedScene();
+    scene.setThreads(threads, per_block);
+    scene.step(200);
+    return scene;
+  };
+  const Scene reference = run(1, Scene::kBodiesPerBlock);
+  const std::size_t most = std::numeric_limits<std::size_t>::max();
+  for (const std::size_t per_block : {std::size_t{1}, most / 8 + 1, most / 4, most}) {
+    const Scene other = run(2, per_block);
+    for (std::size_t b = 0; b < reference.bodyCount(); ++b) {
+      EXPECT_TRUE(sameBits(reference.state(b).p_WB, other.state(b).p_WB) &&
+                  sameBits(reference.state(b).L_W, other.state(b).L_W))
+          << "blocks of " << per_block << ", body " << b;
+    }
+  }
+}
 
 TEST(ContactIslands, AContactSceneWithSleepingIslandsStepsToTheSameBitsOnAnyNumberOfThreads) {
   expectSameBitsOnAnyNumberOfThreads(true);
