@@ -51,4 +51,10 @@ class ThreadPool {
   bool stopping_ = false;
 };
 
+/// Calls body(block, first, end) for the blocks [first, end) of `per_block` indices (the last one shorter)
+/// that cover [0, count), on `pool` where it has more than one thread and there is more than one block,
+/// else on the caller in order. Any per_block from 1 to SIZE_MAX: no sum or product here can wrap.
+void forEachRange(ThreadPool* pool, std::size_t count, std::size_t per_block,
+                  const std::function<void(std::size_t block, std::size_t first, std::size_t end)>& body);
+
 }  // namespace rigid_body

@@ -25,7 +25,7 @@ const CollisionShape* CollisionWorld::facedShape(std::size_t object, const HullF
   return &shape;
 }
 
-bool CollisionWorld::addFacePoints(const btPersistentManifold& manifold, double max_distance,
+bool CollisionWorld::addFacePoints(const btPersistentManifold& manifold, double max_distance, PairScratch& scratch,
                                    std::vector<ContactPoint>& points) {
   // The one query's point (the deepest, should the manifold hold more) gives the normal.
   int deepest = -1;
@@ -34,7 +34,7 @@ bool CollisionWorld::addFacePoints(const btPersistentManifold& manifold, double 
   }
   if (deepest < 0) return false;
   const ContactPoint query = pointFrom(manifold.getContactPoint(deepest), manifold.getBody0(), manifold.getBody1());
-  return addFacePoints(query, max_distance, points);
+  return addFacePoints(query, max_distance, scratch, points);
 }
 
 int CollisionWorld::proxyType(std::size_t object) const {
@@ -42,20 +42,22 @@ int CollisionWorld::proxyType(std::size_t object) const {
   return bullet == nullptr ? -1 : bullet->getCollisionShape()->getShapeType();
 }
 
-bool CollisionWorld::clipPairFaces(const ContactPoint& query, double max_distance, std::vector<ContactPoint>& points) {
+bool CollisionWorld::clipPairFaces(const ContactPoint& query, double max_distance, PairScratch& scratch,
+                                   std::vector<ContactPoint>& points) {
   const HullFaces *hull_a = nullptr, *hull_b = nullptr;
   const Eigen::Isometry3d *X_WA = nullptr, *X_WB = nullptr;
   const CollisionShape* shape_a = facedShape(query.a, &hull_a, &X_WA);
   const CollisionShape* shape_b = facedShape(query.b, &hull_b, &X_WB);
-  supportingFace(*shape_a, hull_a, *X_WA, -query.normal, impl_->face_a);
-  supportingFace(*shape_b, hull_b, *X_WB, query.normal, impl_->face_b);
-  return clipFaces(impl_->face_a, impl_->face_b, query.normal, max_distance, query, points);
+  supportingFace(*shape_a, hull_a, *X_WA, -query.normal, scratch.face_a);
+  supportingFace(*shape_b, hull_b, *X_WB, query.normal, scratch.face_b);
+  return clipFaces(scratch.face_a, scratch.face_b, query.normal, max_distance, query, points);
 }
 
-bool CollisionWorld::addFacePoints(const ContactPoint& query, double max_distance, std::vector<ContactPoint>& points) {
+bool CollisionWorld::addFacePoints(const ContactPoint& query, double max_distance, PairScratch& scratch,
+                                   std::vector<ContactPoint>& points) {
   if (!faceClippedPair(proxyType(query.a), proxyType(query.b))) return false;
   const std::size_t first = points.size();
-  if (!clipPairFaces(query, max_distance, points)) return false;
+  if (!clipPairFaces(query, max_distance, scratch, points)) return false;
   // The clipped points lie on the exact surfaces, the query's on surfaces whose edges and corners may be
   // rounded inward by a margin (a box's, a cylinder's): the deepest clipped point can lie no farther out
   // than the query's. Farther out, the faces do not hold the contact (a corner of the pair the clipping
@@ -122,7 +124,7 @@ double CollisionWorld::pairDistance(std::size_t a, std::size_t b, double max_dis
   });
   std::vector<ContactPoint>& out = points ? *points : impl_->clipped_points;
   out.clear();
-  if (deepest != found.end() && addFacePoints(*deepest, max_distance, out)) {
+  if (deepest != found.end() && addFacePoints(*deepest, max_distance, impl_->scratch, out)) {
     double smallest = max_distance;
     for (const ContactPoint& point : out) smallest = std::min(smallest, point.distance);
     return smallest;

@@ -4,11 +4,17 @@
 
 #include "collision_world_impl.hpp"
 #include "face_manifold.hpp"
+#include "rigid_body_sim/thread_pool.hpp"
 
 namespace rigid_body {
 namespace contact {
 
 namespace {
+
+// A detection on the pool hands out blocks of this many manifolds, or of bodies on the half-spaces: each
+// block holds enough face clipping or plane tests to be worth a hand-out.
+constexpr std::size_t kManifoldsPerBlock = 128;
+constexpr std::size_t kBodiesPerBlock = 1024;
 
 // A sphere meets another shape where the normal through its centre leaves it, so its normal force passes
 // through the centre. Bullet's multi-point iterations rotate a shape a little, find the closest points again
@@ -116,58 +122,108 @@ void CollisionWorld::bounds(std::size_t body, Eigen::Vector3d& low, Eigen::Vecto
 }
 
 void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distance, double speculative_distance,
-                            const std::vector<char>* moving) {
+                            const std::vector<char>* moving, ThreadPool* pool) {
   points.clear();
-  btCollisionDispatcher& dispatcher = impl_->dispatcher;
+  NearDispatcher& dispatcher = impl_->dispatcher;
   // Each step's manifold is made afresh: Bullet's persistence drops the points of a sliding face when they
   // drift from where they were found; warm starting is the contact step's own (by matching points).
   for (int m = 0; m < dispatcher.getNumManifolds(); ++m) dispatcher.getManifoldByIndexInternal(m)->clearManifold();
-  impl_->dispatcher.near_distance = std::max(0.0, max_distance);
-  impl_->dispatcher.bounding_spheres.resize(impl_->body_count);
+  dispatcher.near_distance = std::max(0.0, max_distance);
+  dispatcher.bounding_spheres.resize(impl_->body_count);
   for (std::size_t body = 0; body < impl_->body_count; ++body) {
-    impl_->dispatcher.bounding_spheres[body] << impl_->body_origins[body], impl_->body_reach[body];
+    dispatcher.bounding_spheres[body] << impl_->body_origins[body], impl_->body_reach[body];
   }
+  dispatcher.pool = pool;
   impl_->world.performDiscreteCollisionDetection();
+  dispatcher.pool = nullptr;
   impl_->broadphase.m_deferedcollide = false;  // paired once as a whole; from now on as objects move
   // A pair (or a body on a half-space) with a point within max_distance, one of whose bodies moves: its
   // faces may hold more points that arrive within the step.
-  const bool speculative = speculative_distance > max_distance && moving != nullptr;
-  const auto moves = [&](std::size_t object) { return isBody(object) && (*moving)[object] != 0; };
-  const auto partial = [&](std::size_t first) {
-    return speculative && points.size() > first && (moves(points[first].a) || moves(points[first].b));
-  };
-  for (int m = 0; m < dispatcher.getNumManifolds(); ++m) {
-    btPersistentManifold* manifold = dispatcher.getManifoldByIndexInternal(m);
-    const std::size_t first = points.size();
-    if (addFacePoints(*manifold, max_distance, points)) {
-      if (partial(first)) addSpeculativePoints(first, max_distance, speculative_distance, max_distance, points);
-      continue;
-    }
-    for (int c = 0; c < manifold->getNumContacts(); ++c) {
-      const btManifoldPoint& p = manifold->getContactPoint(c);
-      if (p.getDistance() > max_distance) continue;
-      const ContactPoint point = pointFrom(p, manifold->getBody0(), manifold->getBody1());
-      if (sphereOf(manifold->getBody0()) != nullptr) {
-        addSpherePoint(manifold->getBody0(), point, first, points);
-      } else if (sphereOf(manifold->getBody1()) != nullptr) {
-        addSpherePoint(manifold->getBody1(), point, first, points);
-      } else {
-        points.push_back(point);
-      }
-    }
-    if (partial(first)) addSpeculativePoints(first, max_distance, speculative_distance, 0.0, points);
+  DetectRequest request;
+  request.max_distance = max_distance;
+  request.speculative_distance = speculative_distance;
+  request.moving = moving;
+  request.speculative = speculative_distance > max_distance && moving != nullptr;
+  const auto manifolds = static_cast<std::size_t>(dispatcher.getNumManifolds());
+  const std::size_t manifold_blocks = (manifolds + kManifoldsPerBlock - 1) / kManifoldsPerBlock;
+  const std::size_t body_blocks = impl_->planes.empty() ? 0 : (impl_->body_count + kBodiesPerBlock - 1) / kBodiesPerBlock;
+  const std::size_t blocks = manifold_blocks + body_blocks;
+  if (pool == nullptr || pool->threads() == 1 || blocks < 2) {
+    for (std::size_t m = 0; m < manifolds; ++m) addManifoldPoints(static_cast<int>(m), request, impl_->scratch, points);
+    for (std::size_t body = 0; body < impl_->body_count; ++body) addPlanePoints(body, request, points);
+    return;
   }
+  // On the pool each block of manifolds, or of bodies on the half-spaces, makes its points in a list of its
+  // own; joined in block order they are the list the loops above make.
+  if (impl_->detect_blocks.size() < blocks) impl_->detect_blocks.resize(blocks);
+  pool->parallelFor(blocks, [&](std::size_t block) {
+    Impl::DetectBlock& out = impl_->detect_blocks[block];
+    out.points.clear();
+    if (block < manifold_blocks) {
+      const std::size_t end = std::min(manifolds, (block + 1) * kManifoldsPerBlock);
+      for (std::size_t m = block * kManifoldsPerBlock; m < end; ++m) {
+        addManifoldPoints(static_cast<int>(m), request, out.scratch, out.points);
+      }
+    } else {
+      const std::size_t first = (block - manifold_blocks) * kBodiesPerBlock;
+      const std::size_t end = std::min(impl_->body_count, first + kBodiesPerBlock);
+      for (std::size_t body = first; body < end; ++body) addPlanePoints(body, request, out.points);
+    }
+  });
+  for (std::size_t block = 0; block < blocks; ++block) {
+    const std::vector<ContactPoint>& made = impl_->detect_blocks[block].points;
+    points.insert(points.end(), made.begin(), made.end());
+  }
+}
+
+bool CollisionWorld::movesInStep(const DetectRequest& request, const std::vector<ContactPoint>& points,
+                                 std::size_t first) const {
+  if (!request.speculative || points.size() <= first) return false;
+  const auto moves = [&](std::size_t object) { return isBody(object) && (*request.moving)[object] != 0; };
+  return moves(points[first].a) || moves(points[first].b);
+}
+
+void CollisionWorld::addManifoldPoints(int m, const DetectRequest& request, PairScratch& scratch,
+                                       std::vector<ContactPoint>& points) {
+  const btPersistentManifold* manifold = impl_->dispatcher.getManifoldByIndexInternal(m);
+  const double max_distance = request.max_distance;
+  const std::size_t first = points.size();
+  if (addFacePoints(*manifold, max_distance, scratch, points)) {
+    if (movesInStep(request, points, first)) {
+      addSpeculativePoints(first, max_distance, request.speculative_distance, max_distance, scratch, points);
+    }
+    return;
+  }
+  for (int c = 0; c < manifold->getNumContacts(); ++c) {
+    const btManifoldPoint& p = manifold->getContactPoint(c);
+    if (p.getDistance() > max_distance) continue;
+    const ContactPoint point = pointFrom(p, manifold->getBody0(), manifold->getBody1());
+    if (sphereOf(manifold->getBody0()) != nullptr) {
+      addSpherePoint(manifold->getBody0(), point, first, points);
+    } else if (sphereOf(manifold->getBody1()) != nullptr) {
+      addSpherePoint(manifold->getBody1(), point, first, points);
+    } else {
+      points.push_back(point);
+    }
+  }
+  if (movesInStep(request, points, first)) {
+    addSpeculativePoints(first, max_distance, request.speculative_distance, 0.0, scratch, points);
+  }
+}
+
+void CollisionWorld::addPlanePoints(std::size_t body, const DetectRequest& request,
+                                    std::vector<ContactPoint>& points) const {
   // A half-space meets a body only if the body's bounding sphere reaches it: one dot product per plane and
   // body before any feature is looked at.
-  for (std::size_t body = 0; body < impl_->body_count; ++body) {
-    if (impl_->asleep[body]) continue;
-    const Eigen::Vector3d& origin = impl_->body_origins[body];
-    const double reach = impl_->body_reach[body] + max_distance;
-    for (const Impl::Plane& plane : impl_->planes) {
-      if (plane.normal.dot(origin) - plane.offset > reach) continue;
-      const std::size_t first = points.size();
-      planeContacts(body, plane.object, max_distance, points);
-      if (partial(first)) planeContacts(body, plane.object, speculative_distance, points, max_distance);
+  if (impl_->asleep[body]) return;
+  const Eigen::Vector3d& origin = impl_->body_origins[body];
+  const double reach = impl_->body_reach[body] + request.max_distance;
+  for (const Impl::Plane& plane : impl_->planes) {
+    if (plane.normal.dot(origin) - plane.offset > reach) continue;
+    const std::size_t first = points.size();
+    planeContacts(body, plane.object, request.max_distance, points);
+    if (movesInStep(request, points, first)) {
+      planeContacts(body, plane.object, request.speculative_distance, points, request.max_distance);
     }
   }
 }

@@ -18,6 +18,9 @@
 class btPersistentManifold;
 
 namespace rigid_body {
+
+class ThreadPool;
+
 namespace contact {
 
 struct HullFaces;
@@ -64,8 +67,10 @@ class CollisionWorld {
   /// whose shapes have faces (boxes, cylinders, capsules, hulls; a body on a half-space), and one of whose
   /// bodies is `moving` (per body: its points may close more than max_distance within the step), also
   /// gives the points of its faces up to `speculative_distance` apart, marked speculative, after its others.
+  /// With a `pool`, the pairs' narrow phases and their points are found block by block on it; the list is
+  /// the same on any number of threads.
   void detect(std::vector<ContactPoint>& points, double max_distance, double speculative_distance = 0.0,
-              const std::vector<char>* moving = nullptr);
+              const std::vector<char>* moving = nullptr, ThreadPool* pool = nullptr);
 
   /// Whether an environment object is a half-space (handled here in closed form, not by Bullet).
   bool isPlane(std::size_t object) const;
@@ -89,6 +94,21 @@ class CollisionWorld {
   static void tangentBasis(const Eigen::Vector3d& normal, Eigen::Vector3d& t1, Eigen::Vector3d& t2);
 
  private:
+  struct PairScratch;
+  /// What one detection asks: the near distance, and where the pairs of moving bodies get speculative
+  /// points (`speculative` false: none).
+  struct DetectRequest {
+    double max_distance = 0.0;
+    double speculative_distance = 0.0;
+    const std::vector<char>* moving = nullptr;
+    bool speculative = false;
+  };
+  /// One manifold's points (detect's first loop), and one body's on the half-spaces (its second).
+  void addManifoldPoints(int manifold, const DetectRequest& request, PairScratch& scratch,
+                         std::vector<ContactPoint>& points);
+  void addPlanePoints(std::size_t body, const DetectRequest& request, std::vector<ContactPoint>& points) const;
+  /// Whether a speculative request covers the pair of points[first] (one of its bodies moves).
+  bool movesInStep(const DetectRequest& request, const std::vector<ContactPoint>& points, std::size_t first) const;
   /// The body's features within max_distance of the half-space (and beyond `beyond`: those are marked
   /// speculative); returns the smallest distance, or max_distance.
   double planeContacts(std::size_t body, std::size_t plane_object, double max_distance, std::vector<ContactPoint>& points,
@@ -98,7 +118,7 @@ class CollisionWorld {
   /// max_distance for a pair whose points came from face clipping, 0 for a box pair (its detector gives
   /// penetrating points only).
   void addSpeculativePoints(std::size_t first, double max_distance, double speculative_distance, double beyond,
-                            std::vector<ContactPoint>& points);
+                            PairScratch& scratch, std::vector<ContactPoint>& points);
   /// The shape of an object whose faces give its contact points (faceClippedPair in collision_world_impl.hpp
   /// decides which), with its hull's faces (kMesh) and its pose.
   const CollisionShape* facedShape(std::size_t object, const HullFaces** hull, const Eigen::Isometry3d** X_WS) const;
@@ -106,11 +126,14 @@ class CollisionWorld {
   int proxyType(std::size_t object) const;
   /// The pair's faces along the query's normal, clipped (face_manifold.hpp): their points up to
   /// max_distance apart appended to `points`; false where the faces make none.
-  bool clipPairFaces(const ContactPoint& query, double max_distance, std::vector<ContactPoint>& points);
+  bool clipPairFaces(const ContactPoint& query, double max_distance, PairScratch& scratch,
+                     std::vector<ContactPoint>& points);
   /// A pair's points by face clipping from the normal of its one query's point (face_manifold.hpp), or of
   /// its manifold's deepest; false, adding nothing, where the pair's shapes or faces do not make them.
-  bool addFacePoints(const ContactPoint& query, double max_distance, std::vector<ContactPoint>& points);
-  bool addFacePoints(const btPersistentManifold& manifold, double max_distance, std::vector<ContactPoint>& points);
+  bool addFacePoints(const ContactPoint& query, double max_distance, PairScratch& scratch,
+                     std::vector<ContactPoint>& points);
+  bool addFacePoints(const btPersistentManifold& manifold, double max_distance, PairScratch& scratch,
+                     std::vector<ContactPoint>& points);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -16,6 +16,7 @@
 
 #include "collision_world.hpp"
 #include "convex_hull.hpp"
+#include "near_dispatcher.hpp"
 #include "shape_features.hpp"
 
 namespace rigid_body {
@@ -71,54 +72,6 @@ inline double queryReach(const btCollisionObject& a, const btCollisionObject& b)
   return rounding(a, type_a) + rounding(b, type_b);
 }
 
-// Bullet's dispatcher, which reports the points of a pair up to `near_distance` apart (its own near callback
-// asks for touching points only: two spheres 1e-17 m apart had no contact, so a ball resting against
-// another did not count as touching, and an impact could not travel through the pair).
-struct NearDispatcher : btCollisionDispatcher {
-  explicit NearDispatcher(btCollisionConfiguration* configuration) : btCollisionDispatcher(configuration) {
-    setNearCallback(&NearDispatcher::nearCallback);
-  }
-  double near_distance = 0.0;
-  /// Each body's bounding sphere as placed: its centre of mass and its outer radius [m]. (A box's or
-  /// cylinder's collision margin lies inside it, a hull has none: GJK never sees a shape larger than it is.)
-  std::vector<Eigen::Vector4d> bounding_spheres;
-
-  // btCollisionDispatcher::defaultNearCallback, with the result's distance threshold set.
-  static void nearCallback(btBroadphasePair& pair, btCollisionDispatcher& dispatcher, const btDispatcherInfo& info) {
-    auto* a = static_cast<btCollisionObject*>(pair.m_pProxy0->m_clientObject);
-    auto* b = static_cast<btCollisionObject*>(pair.m_pProxy1->m_clientObject);
-    if (!dispatcher.needsCollision(a, b)) return;
-    // Two bodies whose bounding spheres are farther apart than the near distance have no point within it:
-    // one subtraction instead of a GJK query. The broad phase pairs boxes fattened for motion (Bullet's
-    // tree margin and velocity prediction), so in a pile most of its pairs are such.
-    auto& near = static_cast<NearDispatcher&>(dispatcher);
-    const auto i = static_cast<std::size_t>(a->getUserIndex()), j = static_cast<std::size_t>(b->getUserIndex());
-    if (i < near.bounding_spheres.size() && j < near.bounding_spheres.size()) {
-      const Eigen::Vector4d& s_i = near.bounding_spheres[i];
-      const Eigen::Vector4d& s_j = near.bounding_spheres[j];
-      if ((s_i.head<3>() - s_j.head<3>()).norm() - s_i[3] - s_j[3] > near.near_distance) return;
-    }
-    btCollisionObjectWrapper a_wrap(nullptr, a->getCollisionShape(), a, a->getWorldTransform(), -1, -1);
-    btCollisionObjectWrapper b_wrap(nullptr, b->getCollisionShape(), b, b->getWorldTransform(), -1, -1);
-    if (!pair.m_algorithm) pair.m_algorithm = dispatcher.findAlgorithm(&a_wrap, &b_wrap, nullptr, BT_CONTACT_POINT_ALGORITHMS);
-    if (!pair.m_algorithm) return;
-    btManifoldResult result(&a_wrap, &b_wrap);
-    result.m_closestPointDistanceThreshold = near.near_distance + queryReach(*a, *b);
-    // A manifold drops points farther out than its breaking threshold (a few per cent of the shapes' size):
-    // it must keep what the query's reach asks for (from the pair's second query on; the first makes it).
-    near.manifolds.resizeNoInitialize(0);
-    pair.m_algorithm->getAllContactManifolds(near.manifolds);
-    for (int m = 0; m < near.manifolds.size(); ++m) {
-      btPersistentManifold& manifold = *near.manifolds[m];
-      if (manifold.getContactBreakingThreshold() < result.m_closestPointDistanceThreshold) {
-        manifold.setContactBreakingThreshold(result.m_closestPointDistanceThreshold);
-      }
-    }
-    pair.m_algorithm->processCollision(&a_wrap, &b_wrap, info, &result);
-  }
-  btManifoldArray manifolds;  // scratch of nearCallback
-};
-
 // Box–box (btBoxBoxDetector: a face's points in one pass), sphere–sphere and sphere–box keep Bullet's
 // dedicated algorithms; the other convex pairs get one query and face clipping. (A triangle of an
 // environment mesh keeps the multi-point mode: its pairs are not registered here.)
@@ -126,6 +79,12 @@ inline bool hasDedicatedAlgorithm(int a, int b) {
   const auto box_or_sphere = [](int type) { return type == BOX_SHAPE_PROXYTYPE || type == SPHERE_SHAPE_PROXYTYPE; };
   return box_or_sphere(a) && box_or_sphere(b);
 }
+
+// What the face clipping of one pair writes as it goes (one per thread of a detection).
+struct CollisionWorld::PairScratch {
+  SupportFace face_a, face_b;
+  std::vector<ContactPoint> speculative_points;  // of addSpeculativePoints()
+};
 
 struct CollisionWorld::Impl {
   btDefaultCollisionConfiguration configuration;
@@ -156,9 +115,15 @@ struct CollisionWorld::Impl {
   std::vector<char> asleep;                    // per body: left out of detection (setAsleep)
   std::vector<HullFaces> hull_faces;           // per body: its hull's faces (kMesh), else empty
   std::vector<CollisionShape> environment_shapes;  // without their triangles: what face clipping reads
-  SupportFace face_a, face_b;                  // scratch of the face clipping
+  PairScratch scratch;                         // of pairDistance() and of a detection on one thread
   std::vector<ContactPoint> pair_points, clipped_points;  // scratch of pairDistance() (points it returns to no one)
-  std::vector<ContactPoint> speculative_points;           // scratch of addSpeculativePoints()
+  // A detection on the pool: each block of manifolds or of bodies on the half-spaces makes its points in a
+  // list of its own, with its own scratch; the lists are joined in block order.
+  struct DetectBlock {
+    PairScratch scratch;
+    std::vector<ContactPoint> points;
+  };
+  std::vector<DetectBlock> detect_blocks;
 
   Impl() {
     // A face resting on a face needs several points in one pass. Convex pairs get them by face clipping

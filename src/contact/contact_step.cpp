@@ -99,17 +99,22 @@ ContactMaterial ContactStep::combined(std::size_t a, std::size_t b) const {
           std::sqrt(materials_[a].friction * materials_[b].friction)};
 }
 
-void ContactStep::placeAll(const std::vector<State>& states) {
-  statistics_.out_of_range = 0;
-  for (std::size_t k = 0; k < colliders_.size(); ++k) {
+void ContactStep::placeRange(const std::vector<State>& states, std::size_t first, std::size_t end) {
+  for (std::size_t k = first; k < end; ++k) {
     const State& state = states[colliders_[k]];
     outside_[k] = !(state.p_WB.norm() <= kContactRange) || !state.q_WB.coeffs().allFinite();
-    if (outside_[k]) {
-      ++statistics_.out_of_range;
-      continue;  // its object stays where it last was; its points are dropped (detectPoints)
-    }
-    world_->setPose(k, state.p_WB, state.q_WB);
+    // Outside, its object stays where it last was; its points are dropped (detectPoints).
+    if (!outside_[k]) world_->setPose(k, state.p_WB, state.q_WB);
   }
+}
+
+void ContactStep::countOutside() {
+  statistics_.out_of_range = static_cast<std::int64_t>(std::count(outside_.begin(), outside_.end(), char{1}));
+}
+
+void ContactStep::placeAll(const std::vector<State>& states) {
+  placeRange(states, 0, colliders_.size());
+  countOutside();
 }
 
 double ContactStep::speculativeDistance(double h) const {
@@ -126,7 +131,7 @@ void ContactStep::detectPoints(const SceneBodies* bodies, double h) {
     for (std::size_t k = 0; k < colliders_.size(); ++k) {
       moving_[k] = reachBound(*bodies, k, h) > settings_.penetration_slop ? 1 : 0;
     }
-    world_->detect(points_, settings_.penetration_slop, speculativeDistance(h), &moving_);
+    world_->detect(points_, settings_.penetration_slop, speculativeDistance(h), &moving_, pool_);
   }
   if (statistics_.out_of_range == 0) return;
   points_.erase(std::remove_if(points_.begin(), points_.end(),
@@ -230,8 +235,9 @@ void ContactStep::stepWhole(SceneBodies& bodies, const std::vector<char>& runnin
         bodies.states[body] = start_[k];
       }
     }
+    placeRange(bodies.states, first, end);  // each object is its own body's: placed in the same block
   });
-  placeAll(bodies.states);
+  countOutside();
   detectPoints(&bodies, h);
   // 2. Impacts that begin within the step, each alone on its bodies, are resolved at their time.
   if (settings_.event_location || settings_.continuous) {
@@ -306,14 +312,7 @@ std::size_t ContactStep::solverIndex(const SceneBodies& bodies, std::size_t obje
 
 void ContactStep::forRanges(std::size_t count, std::size_t per_block,
                             const std::function<void(std::size_t, std::size_t)>& body) {
-  // Any block size from 1 to SIZE_MAX: no sum or product here can wrap.
-  per_block = std::max<std::size_t>(1, per_block);
-  const std::size_t blocks = count / per_block + (count % per_block != 0 ? 1 : 0);
-  if (pool_ == nullptr || pool_->threads() == 1 || blocks < 2) {
-    body(0, count);
-    return;
-  }
-  pool_->parallelFor(blocks, [&](std::size_t block) { body(block * per_block, std::min(count, (block + 1) * per_block)); });
+  forEachRange(pool_, count, per_block, [&](std::size_t, std::size_t first, std::size_t end) { body(first, end); });
 }
 
 void ContactStep::buildSolverLists() {

@@ -128,6 +128,10 @@ class ContactStep {
   ContactPartner partner(std::size_t object) const;
   ContactMaterial combined(std::size_t a, std::size_t b) const;
   void placeAll(const std::vector<State>& states);
+  // Colliders [first, end) placed in the collision world (or marked outside it); then the count of those
+  // outside, for the statistics.
+  void placeRange(const std::vector<State>& states, std::size_t first, std::size_t end);
+  void countOutside();
   /// The points at the poses as placed; with the bodies and the step, pairs touching within the slop with
   /// a body that moves add their speculative points (speculativeDistance).
   void detectPoints(const SceneBodies* bodies = nullptr, double h = 0.0);

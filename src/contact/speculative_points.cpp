@@ -13,7 +13,7 @@ namespace rigid_body {
 namespace contact {
 
 void CollisionWorld::addSpeculativePoints(std::size_t first, double max_distance, double speculative_distance,
-                                          double beyond, std::vector<ContactPoint>& points) {
+                                          double beyond, PairScratch& scratch, std::vector<ContactPoint>& points) {
   std::size_t deepest = first;
   for (std::size_t i = first; i < points.size(); ++i) {
     if (points[i].distance < points[deepest].distance) deepest = i;
@@ -23,9 +23,9 @@ void CollisionWorld::addSpeculativePoints(std::size_t first, double max_distance
   // Shapes with faces only (a sphere's one point is all it has; a triangle of an environment mesh is not
   // known to the face code); box pairs too, whose detector gives penetrating points only.
   if (!facedType(proxyType(query.a)) || !facedType(proxyType(query.b))) return;
-  std::vector<ContactPoint>& clipped = impl_->speculative_points;
+  std::vector<ContactPoint>& clipped = scratch.speculative_points;
   clipped.clear();
-  if (!clipPairFaces(query, speculative_distance, clipped)) return;
+  if (!clipPairFaces(query, speculative_distance, scratch, clipped)) return;
   for (ContactPoint& point : clipped) {
     if (!(point.distance > beyond)) continue;  // the pair's own points already hold what is this near
     point.speculative = point.distance > max_distance;

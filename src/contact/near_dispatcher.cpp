@@ -1,0 +1,86 @@
+#include "near_dispatcher.hpp"
+
+#include "collision_world_impl.hpp"
+
+namespace rigid_body {
+namespace contact {
+
+namespace {
+
+// Pairs go to the pool in blocks of this many: a box pair's narrow phase is a fraction of a microsecond,
+// so a block is worth a hand-out.
+constexpr std::size_t kPairsPerBlock = 64;
+
+}  // namespace
+
+bool NearDispatcher::needsNarrowPhase(const btBroadphasePair& pair) {
+  const auto* a = static_cast<const btCollisionObject*>(pair.m_pProxy0->m_clientObject);
+  const auto* b = static_cast<const btCollisionObject*>(pair.m_pProxy1->m_clientObject);
+  if (!needsCollision(a, b)) return false;
+  // The broad phase pairs boxes fattened for motion (Bullet's tree margin and velocity prediction), so in a
+  // pile most of its pairs fail this test.
+  const auto i = static_cast<std::size_t>(a->getUserIndex()), j = static_cast<std::size_t>(b->getUserIndex());
+  if (i < bounding_spheres.size() && j < bounding_spheres.size()) {
+    const Eigen::Vector4d& s_i = bounding_spheres[i];
+    const Eigen::Vector4d& s_j = bounding_spheres[j];
+    if ((s_i.head<3>() - s_j.head<3>()).norm() - s_i[3] - s_j[3] > near_distance) return false;
+  }
+  return true;
+}
+
+void NearDispatcher::processPair(btBroadphasePair& pair, const btDispatcherInfo& info, btManifoldArray& manifolds) {
+  auto* a = static_cast<btCollisionObject*>(pair.m_pProxy0->m_clientObject);
+  auto* b = static_cast<btCollisionObject*>(pair.m_pProxy1->m_clientObject);
+  btCollisionObjectWrapper a_wrap(nullptr, a->getCollisionShape(), a, a->getWorldTransform(), -1, -1);
+  btCollisionObjectWrapper b_wrap(nullptr, b->getCollisionShape(), b, b->getWorldTransform(), -1, -1);
+  btManifoldResult result(&a_wrap, &b_wrap);
+  result.m_closestPointDistanceThreshold = near_distance + queryReach(*a, *b);
+  // A manifold drops points farther out than its breaking threshold (a few per cent of the shapes' size):
+  // it must keep what the query's reach asks for (from the pair's second query on; the first makes it).
+  manifolds.resizeNoInitialize(0);
+  pair.m_algorithm->getAllContactManifolds(manifolds);
+  for (int m = 0; m < manifolds.size(); ++m) {
+    btPersistentManifold& manifold = *manifolds[m];
+    if (manifold.getContactBreakingThreshold() < result.m_closestPointDistanceThreshold) {
+      manifold.setContactBreakingThreshold(result.m_closestPointDistanceThreshold);
+    }
+  }
+  pair.m_algorithm->processCollision(&a_wrap, &b_wrap, info, &result);
+}
+
+void NearDispatcher::dispatchAllCollisionPairs(btOverlappingPairCache* pairs, const btDispatcherInfo& info, btDispatcher*) {
+  block_manifolds_.resize(1);
+  pooled_pairs_.clear();
+  btBroadphasePairArray& all = pairs->getOverlappingPairArray();
+  for (int p = 0; p < all.size(); ++p) {
+    btBroadphasePair& pair = all[p];
+    if (!needsNarrowPhase(pair)) continue;
+    auto* a = static_cast<btCollisionObject*>(pair.m_pProxy0->m_clientObject);
+    auto* b = static_cast<btCollisionObject*>(pair.m_pProxy1->m_clientObject);
+    if (pair.m_algorithm == nullptr) {
+      btCollisionObjectWrapper a_wrap(nullptr, a->getCollisionShape(), a, a->getWorldTransform(), -1, -1);
+      btCollisionObjectWrapper b_wrap(nullptr, b->getCollisionShape(), b, b->getWorldTransform(), -1, -1);
+      pair.m_algorithm = findAlgorithm(&a_wrap, &b_wrap, nullptr, BT_CONTACT_POINT_ALGORITHMS);
+      if (pair.m_algorithm == nullptr) continue;
+    }
+    // A convex pair whose algorithm holds its manifold allocates nothing more; any other (a first query,
+    // a body on an environment mesh, whose algorithm makes one per triangle) runs here.
+    btManifoldArray& manifolds = block_manifolds_[0];
+    manifolds.resizeNoInitialize(0);
+    pair.m_algorithm->getAllContactManifolds(manifolds);
+    const bool convex = a->getCollisionShape()->isConvex() && b->getCollisionShape()->isConvex();
+    if (pool != nullptr && convex && manifolds.size() > 0) {
+      pooled_pairs_.push_back(&pair);
+    } else {
+      processPair(pair, info, manifolds);
+    }
+  }
+  const std::size_t count = pooled_pairs_.size();
+  block_manifolds_.resize(std::max<std::size_t>(1, count / kPairsPerBlock + 1));
+  forEachRange(pool, count, kPairsPerBlock, [&](std::size_t block, std::size_t first, std::size_t end) {
+    for (std::size_t i = first; i < end; ++i) processPair(*pooled_pairs_[i], info, block_manifolds_[block]);
+  });
+}
+
+}  // namespace contact
+}  // namespace rigid_body

@@ -1,0 +1,49 @@
+// Bullet's collision dispatcher as the contact step asks it: the points of a pair up to `near_distance`
+// apart (Bullet's own near callback asks for touching points only: two spheres 1e-17 m apart had no contact,
+// so a ball resting against another did not count as touching, and an impact could not travel through the
+// pair), with the pairs' narrow phases spread over the scene's thread pool. Bullet-private: included by
+// collision_world_impl.hpp only.
+#pragma once
+
+#include <btBulletCollisionCommon.h>
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <vector>
+
+#include "rigid_body_sim/thread_pool.hpp"
+
+namespace rigid_body {
+namespace contact {
+
+struct NearDispatcher : btCollisionDispatcher {
+  explicit NearDispatcher(btCollisionConfiguration* configuration) : btCollisionDispatcher(configuration) {}
+
+  double near_distance = 0.0;
+  /// Each body's bounding sphere as placed: its centre of mass and its outer radius [m]. (A box's or
+  /// cylinder's collision margin lies inside it, a hull has none: GJK never sees a shape larger than it is.)
+  std::vector<Eigen::Vector4d> bounding_spheres;
+  /// Where the pairs' narrow phases run (null: the caller); set for the duration of a detection.
+  ThreadPool* pool = nullptr;
+
+  /// Every overlapping pair of the broad phase, in its order: those that need one get their algorithm (and a
+  /// pair's first manifold) here, in that order, on the caller, since Bullet's dispatcher hands both out of
+  /// pools without a lock; a pair whose algorithm holds its manifold already (any convex pair after its
+  /// first detection) then runs its narrow phase on the pool, each writing its own manifold only. The
+  /// manifolds' order, and so the points', is that of the serial dispatch on any thread count.
+  void dispatchAllCollisionPairs(btOverlappingPairCache* pairs, const btDispatcherInfo& info, btDispatcher*) override;
+
+ private:
+  /// Whether a pair is tested at all: Bullet's filter, then the bounding spheres (two bodies whose spheres
+  /// are farther apart than the near distance have no point within it: one subtraction instead of a query).
+  bool needsNarrowPhase(const btBroadphasePair& pair);
+  /// One pair's narrow phase (btCollisionDispatcher::defaultNearCallback, with the result's distance
+  /// threshold set); `manifolds` is scratch.
+  void processPair(btBroadphasePair& pair, const btDispatcherInfo& info, btManifoldArray& manifolds);
+
+  std::vector<btBroadphasePair*> pooled_pairs_;          // this detection's pairs for the pool
+  std::vector<btManifoldArray> block_manifolds_;          // scratch of processPair, one per block of pairs
+};
+
+}  // namespace contact
+}  // namespace rigid_body
