@@ -76,10 +76,10 @@ void ThreadPool::work() {
 void forEachRange(ThreadPool* pool, std::size_t count, std::size_t per_block,
                   const std::function<void(std::size_t block, std::size_t first, std::size_t end)>& body) {
   per_block = std::max<std::size_t>(1, per_block);
-  const std::size_t blocks = count / per_block + (count % per_block != 0 ? 1 : 0);
+  const std::size_t blocks = blockCount(count, per_block);
   const auto run = [&](std::size_t block) {
     const std::size_t first = block * per_block;  // < count: no wrap
-    body(block, first, count - first <= per_block ? count : first + per_block);
+    body(block, first, blockEnd(first, per_block, count));
   };
   if (pool == nullptr || pool->threads() == 1 || blocks < 2) {
     for (std::size_t block = 0; block < blocks; ++block) run(block);

@@ -8,6 +8,7 @@
 
 #include <condition_variable>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <mutex>
 #include <thread>
@@ -50,6 +51,20 @@ class ThreadPool {
   std::size_t generation_ = 0;
   bool stopping_ = false;
 };
+
+/// `factor` blocks of `per_block` as one block, saturating at SIZE_MAX (a block size from 1 to SIZE_MAX).
+inline std::size_t scaledBlock(std::size_t per_block, std::size_t factor) {
+  return factor != 0 && per_block > SIZE_MAX / factor ? SIZE_MAX : factor * per_block;
+}
+
+/// The number of blocks of `per_block` (≥ 1) that cover `count`, and where the block starting at `first`
+/// (< count) ends; neither can wrap.
+inline std::size_t blockCount(std::size_t count, std::size_t per_block) {
+  return count / per_block + (count % per_block != 0 ? 1 : 0);
+}
+inline std::size_t blockEnd(std::size_t first, std::size_t per_block, std::size_t count) {
+  return count - first <= per_block ? count : first + per_block;
+}
 
 /// Calls body(block, first, end) for the blocks [first, end) of `per_block` indices (the last one shorter)
 /// that cover [0, count), on `pool` where it has more than one thread and there is more than one block,

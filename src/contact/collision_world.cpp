@@ -11,10 +11,10 @@ namespace contact {
 
 namespace {
 
-// A detection on the pool hands out blocks of this many manifolds, or of bodies on the half-spaces: each
-// block holds enough face clipping or plane tests to be worth a hand-out.
-constexpr std::size_t kManifoldsPerBlock = 128;
-constexpr std::size_t kBodiesPerBlock = 1024;
+// A detection on the pool hands out blocks of this many times the scene's block of manifolds, or of bodies
+// on the half-spaces: a manifold's points and a body's plane test are less work than a pair's narrow phase.
+constexpr std::size_t kManifoldBlocks = 2;
+constexpr std::size_t kPlaneBlocks = 16;
 
 // A sphere meets another shape where the normal through its centre leaves it, so its normal force passes
 // through the centre. Bullet's multi-point iterations rotate a shape a little, find the closest points again
@@ -122,7 +122,7 @@ void CollisionWorld::bounds(std::size_t body, Eigen::Vector3d& low, Eigen::Vecto
 }
 
 void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distance, double speculative_distance,
-                            const std::vector<char>* moving, ThreadPool* pool) {
+                            const std::vector<char>* moving, ThreadPool* pool, std::size_t block) {
   points.clear();
   NearDispatcher& dispatcher = impl_->dispatcher;
   // Each step's manifold is made afresh: Bullet's persistence drops the points of a sliding face when they
@@ -133,7 +133,9 @@ void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distan
   for (std::size_t body = 0; body < impl_->body_count; ++body) {
     dispatcher.bounding_spheres[body] << impl_->body_origins[body], impl_->body_reach[body];
   }
+  block = std::max<std::size_t>(1, block);
   dispatcher.pool = pool;
+  dispatcher.pairs_per_block = block;
   impl_->world.performDiscreteCollisionDetection();
   dispatcher.pool = nullptr;
   impl_->broadphase.m_deferedcollide = false;  // paired once as a whole; from now on as objects move
@@ -145,8 +147,10 @@ void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distan
   request.moving = moving;
   request.speculative = speculative_distance > max_distance && moving != nullptr;
   const auto manifolds = static_cast<std::size_t>(dispatcher.getNumManifolds());
-  const std::size_t manifold_blocks = (manifolds + kManifoldsPerBlock - 1) / kManifoldsPerBlock;
-  const std::size_t body_blocks = impl_->planes.empty() ? 0 : (impl_->body_count + kBodiesPerBlock - 1) / kBodiesPerBlock;
+  const std::size_t per_manifold_block = scaledBlock(block, kManifoldBlocks);
+  const std::size_t per_body_block = scaledBlock(block, kPlaneBlocks);
+  const std::size_t manifold_blocks = blockCount(manifolds, per_manifold_block);
+  const std::size_t body_blocks = impl_->planes.empty() ? 0 : blockCount(impl_->body_count, per_body_block);
   const std::size_t blocks = manifold_blocks + body_blocks;
   if (pool == nullptr || pool->threads() == 1 || blocks < 2) {
     for (std::size_t m = 0; m < manifolds; ++m) addManifoldPoints(static_cast<int>(m), request, impl_->scratch, points);
@@ -156,17 +160,16 @@ void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distan
   // On the pool each block of manifolds, or of bodies on the half-spaces, makes its points in a list of its
   // own; joined in block order they are the list the loops above make.
   if (impl_->detect_blocks.size() < blocks) impl_->detect_blocks.resize(blocks);
-  pool->parallelFor(blocks, [&](std::size_t block) {
-    Impl::DetectBlock& out = impl_->detect_blocks[block];
+  pool->parallelFor(blocks, [&](std::size_t b) {
+    Impl::DetectBlock& out = impl_->detect_blocks[b];
     out.points.clear();
-    if (block < manifold_blocks) {
-      const std::size_t end = std::min(manifolds, (block + 1) * kManifoldsPerBlock);
-      for (std::size_t m = block * kManifoldsPerBlock; m < end; ++m) {
-        addManifoldPoints(static_cast<int>(m), request, out.scratch, out.points);
-      }
+    if (b < manifold_blocks) {
+      const std::size_t first = b * per_manifold_block;
+      const std::size_t end = blockEnd(first, per_manifold_block, manifolds);
+      for (std::size_t m = first; m < end; ++m) addManifoldPoints(static_cast<int>(m), request, out.scratch, out.points);
     } else {
-      const std::size_t first = (block - manifold_blocks) * kBodiesPerBlock;
-      const std::size_t end = std::min(impl_->body_count, first + kBodiesPerBlock);
+      const std::size_t first = (b - manifold_blocks) * per_body_block;
+      const std::size_t end = blockEnd(first, per_body_block, impl_->body_count);
       for (std::size_t body = first; body < end; ++body) addPlanePoints(body, request, out.points);
     }
   });

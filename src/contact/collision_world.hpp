@@ -67,10 +67,11 @@ class CollisionWorld {
   /// whose shapes have faces (boxes, cylinders, capsules, hulls; a body on a half-space), and one of whose
   /// bodies is `moving` (per body: its points may close more than max_distance within the step), also
   /// gives the points of its faces up to `speculative_distance` apart, marked speculative, after its others.
-  /// With a `pool`, the pairs' narrow phases and their points are found block by block on it; the list is
-  /// the same on any number of threads.
+  /// With a `pool`, the pairs' narrow phases go to it in blocks of `block` pairs, their manifolds' points in
+  /// blocks of 2 × `block` manifolds and the half-spaces' in blocks of 16 × `block` bodies (the scene's
+  /// bodies per block: 64 by default, any size from 1); the list is the same on any number of threads.
   void detect(std::vector<ContactPoint>& points, double max_distance, double speculative_distance = 0.0,
-              const std::vector<char>* moving = nullptr, ThreadPool* pool = nullptr);
+              const std::vector<char>* moving = nullptr, ThreadPool* pool = nullptr, std::size_t block = 64);
 
   /// Whether an environment object is a half-space (handled here in closed form, not by Bullet).
   bool isPlane(std::size_t object) const;

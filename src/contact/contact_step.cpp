@@ -131,7 +131,7 @@ void ContactStep::detectPoints(const SceneBodies* bodies, double h) {
     for (std::size_t k = 0; k < colliders_.size(); ++k) {
       moving_[k] = reachBound(*bodies, k, h) > settings_.penetration_slop ? 1 : 0;
     }
-    world_->detect(points_, settings_.penetration_slop, speculativeDistance(h), &moving_, pool_);
+    world_->detect(points_, settings_.penetration_slop, speculativeDistance(h), &moving_, pool_, bodies_per_block_);
   }
   if (statistics_.out_of_range == 0) return;
   points_.erase(std::remove_if(points_.begin(), points_.end(),
@@ -222,7 +222,7 @@ void ContactStep::stepWhole(SceneBodies& bodies, const std::vector<char>& runnin
   const std::size_t n = colliders_.size();
   // 1. Free motion: every colliding body by its own integrator, as if nothing touched it (each on its own:
   // spread over the pool).
-  const std::size_t per_block = bodies_per_block_ > SIZE_MAX / kFreeStepBlocks ? SIZE_MAX : kFreeStepBlocks * bodies_per_block_;
+  const std::size_t per_block = scaledBlock(bodies_per_block_, kFreeStepBlocks);
   forRanges(n, per_block, [&](std::size_t first, std::size_t end) {
     for (std::size_t k = first; k < end; ++k) {
       const std::size_t body = colliders_[k];

@@ -5,14 +5,6 @@
 namespace rigid_body {
 namespace contact {
 
-namespace {
-
-// Pairs go to the pool in blocks of this many: a box pair's narrow phase is a fraction of a microsecond,
-// so a block is worth a hand-out.
-constexpr std::size_t kPairsPerBlock = 64;
-
-}  // namespace
-
 bool NearDispatcher::needsNarrowPhase(const btBroadphasePair& pair) {
   const auto* a = static_cast<const btCollisionObject*>(pair.m_pProxy0->m_clientObject);
   const auto* b = static_cast<const btCollisionObject*>(pair.m_pProxy1->m_clientObject);
@@ -76,8 +68,9 @@ void NearDispatcher::dispatchAllCollisionPairs(btOverlappingPairCache* pairs, co
     }
   }
   const std::size_t count = pooled_pairs_.size();
-  block_manifolds_.resize(std::max<std::size_t>(1, count / kPairsPerBlock + 1));
-  forEachRange(pool, count, kPairsPerBlock, [&](std::size_t block, std::size_t first, std::size_t end) {
+  const std::size_t per_block = std::max<std::size_t>(1, pairs_per_block);
+  block_manifolds_.resize(std::max<std::size_t>(1, blockCount(count, per_block)));
+  forEachRange(pool, count, per_block, [&](std::size_t block, std::size_t first, std::size_t end) {
     for (std::size_t i = first; i < end; ++i) processPair(*pooled_pairs_[i], info, block_manifolds_[block]);
   });
 }

@@ -23,8 +23,10 @@ struct NearDispatcher : btCollisionDispatcher {
   /// Each body's bounding sphere as placed: its centre of mass and its outer radius [m]. (A box's or
   /// cylinder's collision margin lies inside it, a hull has none: GJK never sees a shape larger than it is.)
   std::vector<Eigen::Vector4d> bounding_spheres;
-  /// Where the pairs' narrow phases run (null: the caller); set for the duration of a detection.
+  /// Where the pairs' narrow phases run (null: the caller), in blocks of how many pairs; set for the
+  /// duration of a detection.
   ThreadPool* pool = nullptr;
+  std::size_t pairs_per_block = 64;
 
   /// Every overlapping pair of the broad phase, in its order: those that need one get their algorithm (and a
   /// pair's first manifold) here, in that order, on the caller, since Bullet's dispatcher hands both out of
