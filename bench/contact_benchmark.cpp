@@ -1,7 +1,8 @@
 // Cost of contact per body and step (Google Benchmark): N boxes resting on the ground apart from each other,
 // N boxes in stacks of 10 (every box touches two others or the ground), and N spheres in the air far apart
-// (the broad phase alone: no pair overlaps), all awake (sleeping off); the stacks on two threads; the
-// stacks once asleep; and one box among 2 000 half-spaces. Not a
+// (the broad phase alone: no pair overlaps), all awake (sleeping off); the stacks on two threads; a
+// pyramid of 20 rows (one island) on one and on two threads; the stacks once asleep; and one box among
+// 2 000 half-spaces. Not a
 // test: run by scripts/benchmark.sh; numbers in docs/performance.md. One iteration is 10 steps of 1 ms (the
 // node's default tick). Scenes without colliders are scene_benchmark's: their cost with contact compiled in is
 // measured there.
@@ -71,6 +72,28 @@ Scene boxes(std::size_t count, std::size_t height, IntegratorType type, bool asl
   return scene;
 }
 
+// A pyramid of `rows` rows of the boxes in the x-z plane (row r has rows − r boxes, 1 mm apart, each on the
+// two below it): one island, settled for 0.5 s, friction 0.5.
+Scene pyramid(std::size_t rows, IntegratorType type) {
+  ContactSetup setup;
+  setup.settings.sleep = false;
+  setup.environment = {ground()};
+  std::vector<BodyDefinition> bodies;
+  const double pitch = kBox.x() + 0.001;
+  for (std::size_t r = 0; r < rows; ++r) {
+    for (std::size_t i = 0; i < rows - r; ++i) {
+      const Eigen::Vector3d p(pitch * (static_cast<double>(i) + 0.5 * static_cast<double>(r)), 0.0,
+                              0.5 * kBox.z() + kBox.z() * static_cast<double>(r));
+      bodies.push_back(bodyAt(MassProperties::box(1.0, kBox), p, Eigen::Vector3d(0.0, 0.0, -9.81)));
+      setup.bodies.push_back(boxShape());
+      setup.bodies.back()->material.friction = 0.5;
+    }
+  }
+  Scene scene(bodies, type, 0.001, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+  scene.step(500);
+  return scene;
+}
+
 // Spheres 1 m apart in a cube lattice, zero g, slowly drifting: the broad phase finds no overlapping pair.
 Scene apart(std::size_t count, IntegratorType type) {
   ContactSetup setup;
@@ -115,6 +138,13 @@ void stacks2Threads(benchmark::State& bench, IntegratorType type) {
   scene.setThreads(2);
   run(bench, scene);
 }
+// One large island (docs/architecture.md): on one thread, and on two (its contacts filled and prepared over
+// the pool, its sweeps on one thread).
+void pyramidRows(benchmark::State& bench, std::size_t threads) {
+  Scene scene = pyramid(static_cast<std::size_t>(bench.range(0)), IntegratorType::kRk4);
+  scene.setThreads(threads);
+  run(bench, scene);
+}
 void asleep(benchmark::State& bench, IntegratorType type) {
   Scene scene = boxes(static_cast<std::size_t>(bench.range(0)), 10, type, true);
   run(bench, scene);
@@ -153,6 +183,8 @@ BENCHMARK_CAPTURE(stacks, rk4, IntegratorType::kRk4)->Arg(10)->Arg(100)->Arg(100
 BENCHMARK_CAPTURE(stacks, semi_implicit_euler, IntegratorType::kSemiImplicitEuler)
     ->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(stacks2Threads, rk4, IntegratorType::kRk4)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(pyramidRows, one_thread, 1)->Arg(20)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(pyramidRows, two_threads, 2)->Arg(20)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(asleep, rk4, IntegratorType::kRk4)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(broadPhaseOnly)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(manyPlanes)->Arg(1)->Arg(2000)->Unit(benchmark::kMicrosecond);

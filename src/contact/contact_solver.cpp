@@ -50,7 +50,13 @@ void prepareContacts(std::vector<SolverContact>& contacts, std::vector<SolverBod
 
 void prepareContacts(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options,
                      const SolveRange& range) {
-  for (std::size_t k = range.contact_begin; k < range.contact_end; ++k) {
+  prepareContactRows(contacts, bodies, options, range.contact_begin, range.contact_end);
+  applyWarmStarts(contacts, bodies, range);
+}
+
+void prepareContactRows(std::vector<SolverContact>& contacts, const std::vector<SolverBody>& bodies,
+                        const SolveOptions& options, std::size_t begin, std::size_t end) {
+  for (std::size_t k = begin; k < end; ++k) {
     SolverContact& c = contacts[k];
     const SolverBody& a = bodies[c.a];
     const SolverBody& b = bodies[c.b];
@@ -76,7 +82,10 @@ void prepareContacts(std::vector<SolverContact>& contacts, std::vector<SolverBod
     // Speculative: a contact still apart may close its gap, but no more, within the next step.
     if (c.separation > 0.0 && options.dt > 0.0) c.target_speed = std::min(c.target_speed, -c.separation / options.dt);
   }
-  for (std::size_t k = range.contact_begin; k < range.contact_end; ++k) {  // warm start: last step's impulses
+}
+
+void applyWarmStarts(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range) {
+  for (std::size_t k = range.contact_begin; k < range.contact_end; ++k) {  // last step's impulses
     const SolverContact& c = contacts[k];
     const Eigen::Vector3d coefficients(c.normal_impulse, c.friction_impulse.x(), c.friction_impulse.y());
     if (coefficients.isZero(0.0)) continue;

@@ -100,9 +100,15 @@ struct SolveRange {
 Eigen::Vector3d relativeVelocity(const SolverContact& contact, const std::vector<SolverBody>& bodies);
 
 /// Jacobian products, effective masses and target speeds from the bodies' current velocities; applies the
-/// warm-start impulses the contacts carry.
+/// warm-start impulses the contacts carry: prepareContactRows on the range's contacts, then applyWarmStarts.
 void prepareContacts(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options,
                      const SolveRange& range);
+/// The first part alone, for contacts [begin, end): each contact's own rows from the bodies as they are
+/// (before any warm start), writing that contact only; disjoint runs may be prepared on different threads.
+void prepareContactRows(std::vector<SolverContact>& contacts, const std::vector<SolverBody>& bodies,
+                        const SolveOptions& options, std::size_t begin, std::size_t end);
+/// The second: the impulses the range's contacts carry from the last step, applied to their bodies in order.
+void applyWarmStarts(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range);
 void prepareContacts(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options);
 
 /// Sequential impulses until every contact meets its target within rounding or the iterations run out;

@@ -339,7 +339,8 @@ void ContactStep::buildSolverLists() {
   }
   // The solver's lists island by island (solver_islands.hpp): a body enters them with its island's first
   // contact, so each island's bodies follow each other too. Numbered here, in order (solverSlot may wake a
-  // body); each block of islands fills its own bodies and contacts as the solve begins it (fillBlock).
+  // body); each block of islands fills its own bodies and contacts as the solve begins it (fillBodies,
+  // fillContacts; a large island's contacts in runs over the pool).
   islands_.group(admitted_links_, colliders_.size());
   const std::size_t count = admitted_.size();
   solver_contacts_.resize(count);
@@ -358,12 +359,15 @@ void ContactStep::buildSolverLists() {
   island_body_start_.push_back(solver_bodies_.size());
 }
 
-void ContactStep::fillBlock(const SceneBodies& bodies, std::size_t first_island, std::size_t end_island) {
+void ContactStep::fillBodies(const SceneBodies& bodies, std::size_t first_island, std::size_t end_island) {
   for (std::size_t s = island_body_start_[first_island]; s < island_body_start_[end_island]; ++s) {
     fillSolverBody(bodies, s);
   }
+}
+
+void ContactStep::fillContacts(const SceneBodies& bodies, std::size_t first, std::size_t end) {
   PairLookup lookup;
-  for (std::size_t j = islands_.islandStart(first_island); j < islands_.islandStart(end_island); ++j) {
+  for (std::size_t j = first; j < end; ++j) {
     makeContact(*solver_points_[j], bodies, true, lookup, solver_contacts_[j], solver_anchors_[j]);
   }
 }
@@ -410,10 +414,11 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
   // Block by block on the pool: the lists filled (against last step's touching pairs and warm points),
   // solved, the moves applied and the warm points made.
   warm_next_.resize(solver_contacts_.size());
-  islands_.solve(
-      solver_contacts_, solver_bodies_, island_body_start_, solve, pool_,
-      [&](std::size_t, std::size_t first, std::size_t end) { fillBlock(bodies, first, end); },
-      [&](std::size_t, std::size_t first, std::size_t end) { finishBlock(bodies, h, first, end); });
+  SolverIslands::Hooks hooks;
+  hooks.fill_bodies = [&](std::size_t, std::size_t first, std::size_t end) { fillBodies(bodies, first, end); };
+  hooks.fill_contacts = [&](std::size_t first, std::size_t end) { fillContacts(bodies, first, end); };
+  hooks.after = [&](std::size_t, std::size_t first, std::size_t end) { finishBlock(bodies, h, first, end); };
+  islands_.solve(solver_contacts_, solver_bodies_, island_body_start_, solve, pool_, hooks);
   rememberTouching();
   rememberContacts();
 }

@@ -192,9 +192,10 @@ class ContactStep {
   // Runs body(first, end) over [0, count) in blocks of about `per_block`, on the pool where it has threads.
   void forRanges(std::size_t count, std::size_t per_block, const std::function<void(std::size_t, std::size_t)>& body);
   // The admitted points of the step as the solver's lists, island by island: numbered here, filled by
-  // fillBlock for a block of islands [first_island, end_island).
+  // fillBodies for the islands [first_island, end_island) and fillContacts for the contacts [first, end).
   void buildSolverLists();
-  void fillBlock(const SceneBodies& bodies, std::size_t first_island, std::size_t end_island);
+  void fillBodies(const SceneBodies& bodies, std::size_t first_island, std::size_t end_island);
+  void fillContacts(const SceneBodies& bodies, std::size_t first, std::size_t end);
   void solveResting(SceneBodies& bodies, double h);
   // After a block's solve: its bodies' states advanced by the impulses and moves, and its contacts as next
   // step's warm starts (with their anchors: only where the island's solve did not converge).

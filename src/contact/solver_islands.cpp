@@ -9,9 +9,6 @@ namespace contact {
 namespace {
 
 constexpr std::size_t kNoIsland = std::numeric_limits<std::size_t>::max();
-// Islands go to the threads in blocks of about this many contacts: enough work per hand-out that the pool's
-// wake-ups stay small beside it, and enough blocks that two threads share a scene of a few stacks.
-constexpr std::size_t kContactsPerBlock = 128;
 
 // A contact made within the step (after a located impact, or a landing found at the step's end) has not
 // pushed for the whole step: its body's fall was partly free flight, and undoing all of it by c h Δv would
@@ -117,6 +114,7 @@ void SolverIslands::group(const std::vector<std::pair<std::size_t, std::size_t>>
   block_end_.clear();
   std::size_t in_block = 0;
   for (std::size_t island = 0; island < count; ++island) {
+    if (large(island) && in_block > 0) block_end_.push_back(island), in_block = 0;  // a large island alone
     in_block += island_start_[island + 1] - island_start_[island];
     if (in_block >= kContactsPerBlock || island + 1 == count) block_end_.push_back(island + 1), in_block = 0;
   }
@@ -131,9 +129,29 @@ void SolverIslands::forEachBlock(ThreadPool* pool, const BlockWork& work) const 
   }
 }
 
+bool SolverIslands::prepareLargeIslands(std::vector<SolverContact>& contacts, const std::vector<SolverBody>& bodies,
+                                        const SolveOptions& options, ThreadPool* pool, const Hooks& hooks) {
+  if (pool == nullptr || pool->threads() == 1) return false;
+  large_runs_.clear();
+  for (std::size_t island = 0; island < islands(); ++island) {
+    if (!large(island)) continue;
+    if (hooks.fill_bodies) hooks.fill_bodies(0, island, island + 1);
+    for (std::size_t first = island_start_[island]; first < island_start_[island + 1]; first += kContactsPerBlock) {
+      large_runs_.emplace_back(first, std::min(island_start_[island + 1], first + kContactsPerBlock));
+    }
+  }
+  if (large_runs_.empty()) return false;
+  pool->parallelFor(large_runs_.size(), [&](std::size_t run) {
+    const auto [first, end] = large_runs_[run];
+    if (hooks.fill_contacts) hooks.fill_contacts(first, end);
+    prepareContactRows(contacts, bodies, options, first, end);
+  });
+  return true;
+}
+
 void SolverIslands::solve(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies,
                           const std::vector<std::size_t>& body_start, const RestingSolveSettings& settings,
-                          ThreadPool* pool, const BlockWork& before, const BlockWork& after) {
+                          ThreadPool* pool, const Hooks& hooks) {
   const std::size_t count = islands();
   island_converged_.assign(count, 0);
   lift_share_.resize(bodies.size());
@@ -145,18 +163,24 @@ void SolverIslands::solve(std::vector<SolverContact>& contacts, std::vector<Solv
   ranges_.resize(count);
   for (std::size_t island = 0; island < count; ++island) ranges_[island] = rangeOf(island);
   if (block_solvers_.size() < block_end_.size()) block_solvers_.resize(block_end_.size());
-  // A block's islands are prepared, swept together in the lanes, and finished one by one.
+  const bool large_prepared = prepareLargeIslands(contacts, bodies, shared.options, pool, hooks);
+  // A block's islands are filled, prepared, swept together in the lanes, and finished one by one.
   forEachBlock(pool, [&](std::size_t block, std::size_t begin, std::size_t end) {
-    if (before) before(block, begin, end);
-    for (std::size_t island = begin; island < end; ++island) {
-      prepareContacts(contacts, bodies, shared.options, ranges_[island]);
+    if (large_prepared && large(begin)) {
+      applyWarmStarts(contacts, bodies, ranges_[begin]);
+    } else {
+      if (hooks.fill_bodies) hooks.fill_bodies(block, begin, end);
+      if (hooks.fill_contacts) hooks.fill_contacts(island_start_[begin], island_start_[end]);
+      for (std::size_t island = begin; island < end; ++island) {
+        prepareContacts(contacts, bodies, shared.options, ranges_[island]);
+      }
     }
     block_solvers_[block].solve(contacts, bodies, shared.options, ranges_.data() + begin, end - begin,
                                 island_converged_.data() + begin, shared.lanes);
     for (std::size_t island = begin; island < end; ++island) {
       finishRestingContacts(contacts, bodies, shared, ranges_[island], lift_share_);
     }
-    if (after) after(block, begin, end);
+    if (hooks.after) hooks.after(block, begin, end);
   });
 }
 

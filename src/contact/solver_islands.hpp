@@ -57,26 +57,49 @@ class SolverIslands {
   /// Island i's points are order()[islandStart(i)] up to order()[islandStart(i + 1)] (exclusive).
   std::size_t islandStart(std::size_t island) const { return island_start_[island]; }
 
+  /// Whether an island has more points than a block holds (a large island; docs/architecture.md). It is a
+  /// block of its own.
+  bool large(std::size_t island) const { return island_start_[island + 1] - island_start_[island] > kContactsPerBlock; }
+
   /// Work on a block: consecutive islands [first_island, end_island) with enough points between them to be
   /// worth a hand-out to a thread (a block; docs/architecture.md).
   using BlockWork = std::function<void(std::size_t block, std::size_t first_island, std::size_t end_island)>;
+  /// Work on the contacts [first, end) of one island.
+  using ContactWork = std::function<void(std::size_t first, std::size_t end)>;
+  /// What the caller does around the solve, on the thread that solves the islands concerned: fill the
+  /// islands' solver bodies, then their contacts, before they are prepared; after they are finished, apply
+  /// them. What each writes must depend on its own islands (or contacts) alone.
+  struct Hooks {
+    BlockWork fill_bodies;
+    ContactWork fill_contacts;
+    BlockWork after;
+  };
 
   /// Solves contacts made from the points in order() (contact j from point order()[j]) on `bodies` (0 the
   /// environment), island i's bodies being [body_start[i], body_start[i + 1]): afterwards every body has its
   /// dP, dL (the momentum the impulses give it) and dx, dtheta (how far they move it), and every contact its
-  /// impulses. `pool` may be null (everything on the caller's thread). With `before` and `after`, each block
-  /// calls them on its islands before it prepares them and after it has finished them, on the same thread
-  /// (one hand-out per step for the caller's per-contact work as well; what they write must depend on the
-  /// block's islands alone).
+  /// impulses. `pool` may be null (everything on the caller's thread). Each block fills, prepares, sweeps
+  /// and finishes its islands in one hand-out; on a pool of several threads a large island's bodies are
+  /// filled first on the caller and its contacts filled and their rows prepared (prepareContactRows) in runs
+  /// of a block's size over the pool, so that only its warm start, sweeps and projection stay on one thread.
+  /// The same bits either way: those steps are per contact.
   void solve(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies,
              const std::vector<std::size_t>& body_start, const RestingSolveSettings& settings, ThreadPool* pool,
-             const BlockWork& before = {}, const BlockWork& after = {});
+             const Hooks& hooks = {});
 
   /// Per contact of the last solve: whether its island's velocity solve converged.
   bool converged(std::size_t contact) const { return island_converged_[island_of_contact_[contact]] != 0; }
 
  private:
+  // Islands go to the threads in blocks of about this many contacts: enough work per hand-out that the pool's
+  // wake-ups stay small beside it, and enough blocks that two threads share a scene of a few stacks.
+  static constexpr std::size_t kContactsPerBlock = 128;
+
   std::size_t root(std::size_t body);
+  /// The large islands' bodies filled (on the caller), then their contacts filled and prepared in runs over
+  /// the pool; returns whether it did (a pool of several threads and a large island).
+  bool prepareLargeIslands(std::vector<SolverContact>& contacts, const std::vector<SolverBody>& bodies,
+                           const SolveOptions& options, ThreadPool* pool, const Hooks& hooks);
   /// Calls `work` once per block of the last group(), spread over `pool` (may be null: the caller's thread).
   /// What a block writes must depend on its islands alone, so that the result does not depend on the threads.
   void forEachBlock(ThreadPool* pool, const BlockWork& work) const;
@@ -91,6 +114,7 @@ class SolverIslands {
   std::vector<SolveRange> ranges_;              // per island
   std::vector<LaneContactSolver> block_solvers_;  // per block: its lanes' buffers, kept between steps
   std::vector<double> lift_share_;              // per solver body
+  std::vector<std::pair<std::size_t, std::size_t>> large_runs_;  // scratch: runs of the large islands' contacts
 };
 
 }  // namespace contact
