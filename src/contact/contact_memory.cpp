@@ -93,12 +93,10 @@ const ContactStep::WarmPoint* ContactStep::warmStart(SolverContact& c, const Con
                                                      const SceneBodies& bodies, PairLookup& lookup) const {
   const std::uint64_t key = pairKey(point.a, point.b);
   if (key != lookup.warm_key) {
-    WarmPoint probe{};
-    probe.key = key;
-    const auto found = std::equal_range(warm_.begin(), warm_.end(), probe);
+    const auto [begin, end] = warm_runs_.find(key);
     lookup.warm_key = key;
-    lookup.warm_begin = static_cast<std::size_t>(found.first - warm_.begin());
-    lookup.warm_end = static_cast<std::size_t>(found.second - warm_.begin());
+    lookup.warm_begin = begin;
+    lookup.warm_end = end;
   }
   const auto range = std::make_pair(warm_.begin() + static_cast<std::ptrdiff_t>(lookup.warm_begin),
                                     warm_.begin() + static_cast<std::ptrdiff_t>(lookup.warm_end));
@@ -177,13 +175,24 @@ void ContactStep::rememberContacts() {
       if (sleepingPair(w.key)) warm_next_.push_back(w);  // kept for when the island wakes
     }
   }
-  // By pair, each pair's points in their order: sorted as (key, position) pairs and gathered, not moved
-  // about whole (a warm point is 14 doubles).
+  warm_.swap(warm_next_);
+  indexWarmPoints();
+}
+
+void ContactStep::indexWarmPoints() {
+  // Each pair's points follow each other as the solve made them (a pair's points are consecutive in the
+  // detection and in its island), so they are indexed where they lie. Should a pair's points ever not be
+  // consecutive, they are sorted by pair first, each pair's in their order (as (key, position) pairs and
+  // gathered: a warm point is 14 doubles): the lookups find the same points in the same order either way.
+  const auto keyOf = [&](std::size_t i) { return warm_[i].key; };
+  if (warm_runs_.build(warm_.size(), keyOf)) return;
   warm_order_.clear();
-  for (std::size_t i = 0; i < warm_next_.size(); ++i) warm_order_.emplace_back(warm_next_[i].key, i);
+  for (std::size_t i = 0; i < warm_.size(); ++i) warm_order_.emplace_back(warm_[i].key, i);
   std::sort(warm_order_.begin(), warm_order_.end());
-  warm_.clear();
-  for (const auto& [key, i] : warm_order_) warm_.push_back(warm_next_[i]);
+  warm_next_.clear();
+  for (const auto& [key, i] : warm_order_) warm_next_.push_back(warm_[i]);
+  warm_.swap(warm_next_);
+  warm_runs_.build(warm_.size(), keyOf);
 }
 
 }  // namespace contact

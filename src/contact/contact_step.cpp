@@ -183,6 +183,7 @@ void ContactStep::restart(const std::vector<State>& states) {
   detectPoints();
   touching_.clear();
   warm_.clear();
+  warm_runs_.clear();
   for (const ContactPoint& point : points_) touching_.push_back(pairKey(point.a, point.b));
   std::sort(touching_.begin(), touching_.end());
   touching_.erase(std::unique(touching_.begin(), touching_.end()), touching_.end());
@@ -269,7 +270,7 @@ void ContactStep::stepWhole(SceneBodies& bodies, const std::vector<char>& runnin
     ++statistics_.refused_steps;
     touching_.clear();
     warm_.clear();
-
+    warm_runs_.clear();
   }
 }
 
@@ -398,6 +399,7 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
     rememberTouching();
     warm_.erase(std::remove_if(warm_.begin(), warm_.end(), [&](const WarmPoint& w) { return !sleepingPair(w.key); }),
                 warm_.end());
+    indexWarmPoints();
     for (std::size_t s = 1; s < solver_bodies_.size(); ++s) solver_of_[solver_body_of_[s]] = kUnassigned;
     return;
   }

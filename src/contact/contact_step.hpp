@@ -16,6 +16,7 @@
 #include "collision_world.hpp"
 #include "contact_solver.hpp"
 #include "island_sleep.hpp"
+#include "pair_runs.hpp"
 #include "solver_islands.hpp"
 #include "rigid_body_sim/contact.hpp"
 #include "rigid_body_sim/dynamics.hpp"
@@ -111,7 +112,6 @@ class ContactStep {
     // after a step whose solve converged.
     bool anchored;
     Eigen::Vector3d anchor_lo, anchor_hi;
-    bool operator<(const WarmPoint& other) const { return key < other.key; }
   };
   // What a pass over the points last looked up for a pair (a pair's points follow each other, and each asks
   // several times): whether it was touching, and its run of warm_. Each pass (and each thread of one) has its
@@ -201,9 +201,12 @@ class ContactStep {
   // step's warm starts (with their anchors: only where the island's solve did not converge).
   void finishBlock(SceneBodies& bodies, double h, std::size_t first_island, std::size_t end_island);
   // After the solve: the pairs touching now (and those of sleeping islands) for the next step; the reports
-  // while recording, and the warm points sorted by pair.
+  // while recording, and the warm points indexed by pair.
   void rememberTouching();
   void rememberContacts();
+  // warm_runs_ for warm_ as it now is (warm_ sorted by pair first, should a pair's points not follow each
+  // other).
+  void indexWarmPoints();
   SolverIslands islands_;
   std::vector<std::size_t> admitted_;  // scratch: the points the resting solve takes
   std::vector<std::pair<std::size_t, std::size_t>> admitted_links_;  // their objects
@@ -257,7 +260,8 @@ class ContactStep {
   Eigen::Vector3d inObjectFrame(std::size_t object, const Eigen::Vector3d& p_W, const SceneBodies& bodies) const;
   Eigen::Vector3d inWorld(std::size_t object, const Eigen::Vector3d& local, const SceneBodies& bodies) const;
   std::vector<WarmPoint> warm_, warm_next_;
-  std::vector<std::pair<std::uint64_t, std::size_t>> warm_order_;  // scratch of rememberContacts
+  PairRuns warm_runs_;  // each pair's run of warm_ (indexWarmPoints)
+  std::vector<std::pair<std::uint64_t, std::size_t>> warm_order_;  // scratch of indexWarmPoints
   // Per solver contact: the anchors it carries on a and on b (in those objects' frames); zeros if not anchored.
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> solver_anchors_;
 };
