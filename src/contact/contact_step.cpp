@@ -434,7 +434,12 @@ void ContactStep::rememberTouching() {
     }
   }
   touching_.swap(kept_touching_);
-  for (const ContactPoint* point : solver_points_) touching_.push_back(pairKey(point->a, point->b));
+  // A pair's points follow each other: one key per run before the sort.
+  std::uint64_t last = ~std::uint64_t{0};
+  for (const ContactPoint* point : solver_points_) {
+    const std::uint64_t key = pairKey(point->a, point->b);
+    if (key != last) touching_.push_back(key), last = key;
+  }
   std::sort(touching_.begin(), touching_.end());
   touching_.erase(std::unique(touching_.begin(), touching_.end()), touching_.end());
 }
