@@ -179,10 +179,10 @@ void broadPhaseOnly(benchmark::State& bench) {
 BENCHMARK_CAPTURE(resting, rk4, IntegratorType::kRk4)->Arg(1)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(resting, semi_implicit_euler, IntegratorType::kSemiImplicitEuler)
     ->Arg(1)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(stacks, rk4, IntegratorType::kRk4)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(stacks, rk4, IntegratorType::kRk4)->Arg(10)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(stacks, semi_implicit_euler, IntegratorType::kSemiImplicitEuler)
     ->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(stacks2Threads, rk4, IntegratorType::kRk4)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(stacks2Threads, rk4, IntegratorType::kRk4)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(pyramidRows, one_thread, 1)->Arg(20)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(pyramidRows, two_threads, 2)->Arg(20)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(asleep, rk4, IntegratorType::kRk4)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
