@@ -26,16 +26,21 @@ void NearDispatcher::processPair(btBroadphasePair& pair, const btDispatcherInfo&
   btCollisionObjectWrapper a_wrap(nullptr, a->getCollisionShape(), a, a->getWorldTransform(), -1, -1);
   btCollisionObjectWrapper b_wrap(nullptr, b->getCollisionShape(), b, b->getWorldTransform(), -1, -1);
   btManifoldResult result(&a_wrap, &b_wrap);
-  result.m_closestPointDistanceThreshold = near_distance + queryReach(*a, *b);
+  const double reach = near_distance + queryReach(*a, *b);
+  // Bullet's algorithm for a body on an environment mesh asks each triangle, whenever the result's threshold
+  // is above zero, for closest points into a manifold of the triangle's own algorithm, which it frees with
+  // them: the pair's own manifold stayed empty and bodies fell through environment meshes. Such a pair
+  // keeps the threshold at zero; its triangles then add to its manifold every point no farther apart than
+  // the manifold's breaking threshold, which holds the reach instead.
+  const bool concave = !a->getCollisionShape()->isConvex() || !b->getCollisionShape()->isConvex();
+  result.m_closestPointDistanceThreshold = concave ? 0.0 : reach;
   // A manifold drops points farther out than its breaking threshold (a few per cent of the shapes' size):
   // it must keep what the query's reach asks for (from the pair's second query on; the first makes it).
   manifolds.resizeNoInitialize(0);
   pair.m_algorithm->getAllContactManifolds(manifolds);
   for (int m = 0; m < manifolds.size(); ++m) {
     btPersistentManifold& manifold = *manifolds[m];
-    if (manifold.getContactBreakingThreshold() < result.m_closestPointDistanceThreshold) {
-      manifold.setContactBreakingThreshold(result.m_closestPointDistanceThreshold);
-    }
+    if (manifold.getContactBreakingThreshold() < reach) manifold.setContactBreakingThreshold(reach);
   }
   pair.m_algorithm->processCollision(&a_wrap, &b_wrap, info, &result);
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "../../src/contact/solver_islands.hpp"
+#include "rigid_body_sim/mesh_primitives.hpp"
 #include "rigid_body_sim/references.hpp"
 #include "rigid_body_sim/scene.hpp"
 #include "rigid_body_sim/thread_pool.hpp"
@@ -238,6 +239,74 @@ TEST(ContactIslands, AContactSceneStepsToTheSameBitsWithAnyBlockSize) {
 
 TEST(ContactIslands, AContactSceneWithSleepingIslandsStepsToTheSameBitsOnAnyNumberOfThreads) {
   expectSameBitsOnAnyNumberOfThreads(true);
+}
+
+// A mixed pile dropped onto a ring of triangles on the ground: boxes, balls, cylinders, capsules and hulls
+// (icospheres), so that every kind of narrow phase the detection runs is in it: Bullet's box–box and
+// sphere algorithms and the one GJK/EPA query with face clipping on the pool, a body on an environment mesh
+// (whose algorithm allocates per triangle) on the caller, the half-space's features in blocks. Blocks of
+// three bodies: pairs in blocks of 3, manifolds of 6, bodies on the half-space of 48.
+Scene mixedPile() {
+  ContactSetup setup;
+  CollisionShape ring;
+  ring.type = ShapeType::kMesh;
+  ring.mesh = primitives::ring(0.6, 1.0, 0.3, 24);
+  ring.pose.translation() = Eigen::Vector3d(0.0, 0.0, 0.15);
+  setup.environment = {reference::groundPlane(Eigen::Vector3d::UnitZ(), 0.5), ring};
+  setup.settings.sleep = false;
+  std::vector<BodyDefinition> bodies;
+  for (int i = 0; i < 48; ++i) {
+    const Eigen::Vector3d p(-0.525 + 0.35 * (i % 4), -0.525 + 0.35 * ((i / 4) % 4), 0.5 + 0.35 * (i / 16));
+    const Eigen::Quaterniond q(Eigen::AngleAxisd(0.05 * (i % 7), Eigen::Vector3d(1, 2, 3).normalized()));
+    CollisionShape shape;
+    MassProperties mass = MassProperties::sphere(0.5, 0.1);  // the balls', and the hulls' (icospheres of it)
+    switch (i % 5) {
+      case 0: shape = reference::collisionShape(ShapeType::kBox, Eigen::Vector3d::Constant(0.2), 0.5, 0.0);
+              mass = MassProperties::box(0.5, Eigen::Vector3d::Constant(0.2)); break;
+      case 1: shape = reference::collisionShape(ShapeType::kSphere, Eigen::Vector3d(0.1, 0, 0), 0.5, 0.2); break;
+      case 2: shape = reference::collisionShape(ShapeType::kCylinder, Eigen::Vector3d(0.08, 0.2, 0), 0.5, 0.0);
+              mass = MassProperties::cylinder(0.5, 0.08, 0.2); break;
+      case 3: shape = reference::collisionShape(ShapeType::kCapsule, Eigen::Vector3d(0.07, 0.12, 0), 0.5, 0.0);
+              mass = MassProperties::cylinder(0.5, 0.07, 0.26); break;  // near enough for a test of bits
+      default: shape = reference::collisionShape(ShapeType::kMesh, Eigen::Vector3d::Zero(), 0.5, 0.0);
+               shape.mesh = primitives::icosphere(0.1, 1); break;
+    }
+    bodies.push_back(reference::contactBody(mass, p, q, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), kDown));
+    setup.bodies.push_back(shape);
+  }
+  return Scene(bodies, IntegratorType::kRk4, kH, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+}
+
+TEST(ContactIslands, AMixedPileOnAMeshStepsToTheSameBitsOnAnyNumberOfThreads) {
+  bool on_ring = false, faced_pair = false;  // the reference met the mesh, and pairs of faced shapes
+  const auto run = [&](std::size_t threads) {
+    Scene scene = mixedPile();
+    scene.setThreads(threads, 3);
+    scene.setRecordContacts(true);
+    for (int i = 0; i < 80; ++i) {
+      scene.step(10);
+      for (std::size_t b = 0; b < scene.bodyCount(); ++b) {
+        for (const Contact& c : scene.contacts(b)) {
+          on_ring = on_ring || (!c.other.is_body && c.other.index == 1);
+          faced_pair = faced_pair || (c.other.is_body && b % 5 >= 2 && c.other.index % 5 >= 2);
+        }
+      }
+    }
+    return scene;
+  };
+  const Scene reference = run(1);
+  ASSERT_TRUE(on_ring);
+  ASSERT_TRUE(faced_pair);
+  for (const std::size_t threads : {2, 3}) {
+    const Scene other = run(threads);
+    for (std::size_t b = 0; b < reference.bodyCount(); ++b) {
+      const State& r = reference.state(b);
+      const State& o = other.state(b);
+      EXPECT_TRUE(sameBits(r.p_WB, o.p_WB) && sameBits(r.P_W, o.P_W) && sameBits(r.L_W, o.L_W) &&
+                  std::memcmp(r.q_WB.coeffs().data(), o.q_WB.coeffs().data(), 4 * sizeof(double)) == 0)
+          << threads << " threads, body " << b;
+    }
+  }
 }
 
 TEST(ContactIslands, AContactSceneStepsToTheSameBitsWithAndWithoutWideInstructions) {
