@@ -69,6 +69,51 @@ bool CollisionWorld::addFacePoints(const ContactPoint& query, double max_distanc
   return false;
 }
 
+bool CollisionWorld::addTrianglePoints(const btPersistentManifold& manifold, double max_distance, PairScratch& scratch,
+                                       std::vector<ContactPoint>& points) {
+  const auto index0 = static_cast<std::size_t>(manifold.getBody0()->getUserIndex());
+  const auto index1 = static_cast<std::size_t>(manifold.getBody1()->getUserIndex());
+  const bool mesh_is_0 = proxyType(index0) == TRIANGLE_MESH_SHAPE_PROXYTYPE;
+  const std::size_t mesh = mesh_is_0 ? index0 : index1, body = mesh_is_0 ? index1 : index0;
+  if (proxyType(mesh) != TRIANGLE_MESH_SHAPE_PROXYTYPE || !isBody(body) || !facedType(proxyType(body))) return false;
+  if (manifold.getNumContacts() == 0) return false;
+  const std::vector<std::array<Eigen::Vector3d, 3>>& triangles = impl_->environment_triangles[mesh - bodyCount()];
+  const HullFaces* hull = nullptr;
+  const Eigen::Isometry3d* X_WS = nullptr;
+  const CollisionShape& shape = *facedShape(body, &hull, &X_WS);
+  const std::size_t first = points.size();
+  // Each triangle once, from its deepest point (a manifold holds at most four points).
+  for (int c = 0; c < manifold.getNumContacts(); ++c) {
+    const btManifoldPoint& p = manifold.getContactPoint(c);
+    const int triangle = mesh_is_0 ? p.m_index0 : p.m_index1;
+    bool deepest = triangle >= 0 && static_cast<std::size_t>(triangle) < triangles.size();
+    for (int o = 0; o < manifold.getNumContacts() && deepest; ++o) {
+      const btManifoldPoint& q = manifold.getContactPoint(o);
+      const int other = mesh_is_0 ? q.m_index0 : q.m_index1;
+      deepest = other != triangle || q.getDistance() > p.getDistance() || (q.getDistance() == p.getDistance() && o >= c);
+    }
+    if (!deepest) continue;
+    const ContactPoint query = pointFrom(p, manifold.getBody0(), manifold.getBody1());
+    if (query.distance > max_distance + queryReach(*manifold.getBody0(), *manifold.getBody1())) continue;
+    // The triangle as a face of the mesh's side, its normal the side of the triangle the body is on; the
+    // body's face along the normal towards the mesh (n points from b to a).
+    SupportFace& face = query.a == mesh ? scratch.face_a : scratch.face_b;
+    SupportFace& body_face = query.a == mesh ? scratch.face_b : scratch.face_a;
+    const auto& t = triangles[static_cast<std::size_t>(triangle)];
+    face.vertices.assign(t.begin(), t.end());
+    face.normal = (t[1] - t[0]).cross(t[2] - t[0]).normalized();
+    const Eigen::Vector3d towards_body = query.a == mesh ? Eigen::Vector3d(-query.normal) : query.normal;
+    if (face.normal.dot(towards_body) < 0.0) face.normal = -face.normal;
+    supportingFace(shape, hull, *X_WS, -towards_body, body_face);
+    if (!clipFaces(scratch.face_a, scratch.face_b, query.normal, max_distance, query, points) &&
+        query.distance <= max_distance) {
+      points.push_back(query);  // an edge or corner on the triangle: its one point
+    }
+  }
+  keepFourPoints(points, first);
+  return true;
+}
+
 double CollisionWorld::planeContacts(std::size_t body, std::size_t plane_object, double max_distance,
                                      std::vector<ContactPoint>& points, double beyond) const {
   const Impl::Plane* plane = &impl_->planes[static_cast<std::size_t>(impl_->plane_of_object[plane_object])];

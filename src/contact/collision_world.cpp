@@ -85,6 +85,14 @@ CollisionWorld::CollisionWorld(const std::vector<CollisionShape>& environment, c
   for (std::size_t i = 0; i < environment.size(); ++i) {
     impl_->add(environment[i], true, static_cast<int>(bodies.size() + i), btTransform::getIdentity());
     impl_->environment_shapes.push_back(environment[i]);
+    impl_->environment_triangles.emplace_back();
+    if (environment[i].type == ShapeType::kMesh) {
+      for (const auto& t : environment[i].mesh.triangles) {
+        const auto& v = environment[i].mesh.vertices;
+        const Eigen::Isometry3d& X = environment[i].pose;
+        impl_->environment_triangles.back().push_back({X * v[t[0]], X * v[t[1]], X * v[t[2]]});
+      }
+    }
     impl_->environment_shapes.back().mesh = TriangleMesh();
   }
 }
@@ -191,7 +199,7 @@ void CollisionWorld::addManifoldPoints(int m, const DetectRequest& request, Pair
   const btPersistentManifold* manifold = impl_->dispatcher.getManifoldByIndexInternal(m);
   const double max_distance = request.max_distance;
   const std::size_t first = points.size();
-  if (addFacePoints(*manifold, max_distance, scratch, points)) {
+  if (addFacePoints(*manifold, max_distance, scratch, points) || addTrianglePoints(*manifold, max_distance, scratch, points)) {
     if (movesInStep(request, points, first)) {
       addSpeculativePoints(first, max_distance, request.speculative_distance, max_distance, scratch, points);
     }

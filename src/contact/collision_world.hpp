@@ -135,6 +135,12 @@ class CollisionWorld {
                      std::vector<ContactPoint>& points);
   bool addFacePoints(const btPersistentManifold& manifold, double max_distance, PairScratch& scratch,
                      std::vector<ContactPoint>& points);
+  /// A body on an environment mesh: for each triangle that holds a point of the manifold, the body's face
+  /// along the triangle's deepest point's normal clipped against the triangle (the triangle's own point
+  /// where they are not faces along it), at most four points for the pair; false, adding nothing, where the
+  /// pair is not a faced body on a mesh.
+  bool addTrianglePoints(const btPersistentManifold& manifold, double max_distance, PairScratch& scratch,
+                         std::vector<ContactPoint>& points);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

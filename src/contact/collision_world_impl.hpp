@@ -10,6 +10,7 @@
 #include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
 
 #include <algorithm>
+#include <array>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -115,6 +116,9 @@ struct CollisionWorld::Impl {
   std::vector<char> asleep;                    // per body: left out of detection (setAsleep)
   std::vector<HullFaces> hull_faces;           // per body: its hull's faces (kMesh), else empty
   std::vector<CollisionShape> environment_shapes;  // without their triangles: what face clipping reads
+  // Per environment object: a mesh's triangles in the world (else empty), for clipping a body's face
+  // against the triangle it touches (CollisionWorld::addTrianglePoints).
+  std::vector<std::vector<std::array<Eigen::Vector3d, 3>>> environment_triangles;
   PairScratch scratch;                         // of pairDistance() and of a detection on one thread
   std::vector<ContactPoint> pair_points, clipped_points;  // scratch of pairDistance() (points it returns to no one)
   // A detection on the pool: each block of manifolds or of bodies on the half-spaces makes its points in a

@@ -2,7 +2,8 @@
 // they meet on a half-space: every shape dropped on a slab of triangles rests on its top face, a block
 // sliding across the triangles' edges stops after v0²/(2 μ g), a ball rolls across them at constant speed.
 // Bullet's algorithm for a convex body on a triangle mesh once put its points in manifolds it freed, and
-// every body fell through environment meshes; these tests fail that way.
+// every body fell through environment meshes; these tests fail that way. Each touching triangle is clipped
+// as a face against the body's face along its normal (as convex pairs are, docs/contact.md, "Shapes").
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -82,11 +83,7 @@ TEST(EnvironmentMeshes, EveryShapeDroppedOnASlabOfTrianglesRestsOnItsTopFace) {
   for (std::size_t i = 0; i < shapes.size(); ++i) {
     const State& state = scene.state(i);
     EXPECT_NEAR(state.p_WB.z(), kTop + shapes[i].half_height, 2.0 * slop) << "shape " << i;
-    // The capsule lying on triangles rests at its height but keeps a velocity its pose does not follow
-    // (DISABLED_ACapsuleLyingOnTrianglesComesToRest below).
-    if (shapes[i].shape.type != ShapeType::kCapsule) {
-      EXPECT_LT(linearVelocity(shapes[i].mass, state).norm(), 1e-3) << "shape " << i;
-    }
+    EXPECT_LT(linearVelocity(shapes[i].mass, state).norm(), 1e-3) << "shape " << i;
     ASSERT_FALSE(scene.contacts(i).empty()) << "shape " << i;
     for (const Contact& contact : scene.contacts(i)) EXPECT_FALSE(contact.other.is_body) << "shape " << i;
   }
@@ -134,12 +131,10 @@ TEST(EnvironmentMeshes, ABallRollsAcrossTheTrianglesAtConstantSpeed) {
   EXPECT_NEAR(scene.state().p_WB.z(), start.z(), 2.0 * setup.settings.penetration_slop);
 }
 
-// A known limit (docs/contact.md, "Known limits"): a body on a triangle of an environment mesh gets its
-// points from Bullet's multi-point perturbation, not from face clipping, and a capsule lying on a face gets
-// one point at one end of its segment. It then rests at its height with a momentum of a few mm/s that the
-// solve and the projection cancel each step (its pose holds still; its reported velocity does not).
-// Disabled until the triangles' faces are clipped like the convex pairs' (gtest lists it as disabled).
-TEST(EnvironmentMeshes, DISABLED_ACapsuleLyingOnTrianglesComesToRest) {
+// A capsule lying on a face of triangles comes to rest on both ends of its segment. With Bullet's
+// multi-point perturbation alone (before each touching triangle was clipped as a face) it got one point,
+// at one end, and kept a momentum of a few mm/s that the solve and the projection cancelled each step.
+TEST(EnvironmentMeshes, ACapsuleLyingOnTrianglesComesToRestOnBothEnds) {
   ContactSetup setup;
   setup.environment = {slab(3.0, 0.5)};
   setup.bodies = {capsule()};
