@@ -1,6 +1,7 @@
 #include "collision_world.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "collision_world_impl.hpp"
 #include "face_manifold.hpp"
@@ -82,6 +83,7 @@ CollisionWorld::CollisionWorld(const std::vector<CollisionShape>& environment, c
     impl_->body_reach.push_back(outerRadius(bodies[i]));
   }
   impl_->asleep.assign(bodies.size(), 0);
+  impl_->plane_scans.resize(bodies.size());
   for (std::size_t i = 0; i < environment.size(); ++i) {
     impl_->add(environment[i], true, static_cast<int>(bodies.size() + i), btTransform::getIdentity());
     impl_->environment_shapes.push_back(environment[i]);
@@ -222,14 +224,33 @@ void CollisionWorld::addManifoldPoints(int m, const DetectRequest& request, Pair
   }
 }
 
-void CollisionWorld::addPlanePoints(std::size_t body, const DetectRequest& request,
-                                    std::vector<ContactPoint>& points) const {
-  // A half-space meets a body only if the body's bounding sphere reaches it: one dot product per plane and
-  // body before any feature is looked at.
+void CollisionWorld::addPlanePoints(std::size_t body, const DetectRequest& request, std::vector<ContactPoint>& points) {
+  // A half-space meets a body only if the body's bounding sphere reaches it: n·origin − offset ≤ reach.
   if (impl_->asleep[body]) return;
   const Eigen::Vector3d& origin = impl_->body_origins[body];
   const double reach = impl_->body_reach[body] + request.max_distance;
-  for (const Impl::Plane& plane : impl_->planes) {
+  Impl::PlaneScan& scan = impl_->plane_scans[body];
+  // The planes out of reach at the last scan stay out of it while the body's origin is nearer than `slack`
+  // to where it was then (n·x changes by at most |Δx| for a unit n): only the planes in reach then are
+  // tested, and 2 000 planes far away cost what one does. Strictly nearer, less a rounding margin, so that
+  // every test comes out as a full scan's would.
+  const bool rescan = !(scan.reach == reach && (origin - scan.origin).squaredNorm() < scan.slack * scan.slack);
+  if (rescan) {
+    scan.origin = origin;
+    scan.reach = reach;
+    scan.slack = std::numeric_limits<double>::infinity();
+    scan.near.clear();
+    for (std::size_t k = 0; k < impl_->planes.size(); ++k) {
+      const double gap = impl_->planes[k].normal.dot(origin) - impl_->planes[k].offset - reach;
+      if (gap > 0.0) {
+        scan.slack = std::min(scan.slack, std::max(0.0, gap * (1.0 - 1e-12) - 1e-12));
+      } else {
+        scan.near.push_back(k);
+      }
+    }
+  }
+  for (const std::size_t k : scan.near) {
+    const Impl::Plane& plane = impl_->planes[k];
     if (plane.normal.dot(origin) - plane.offset > reach) continue;
     const std::size_t first = points.size();
     planeContacts(body, plane.object, request.max_distance, points);

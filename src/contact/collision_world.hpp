@@ -107,7 +107,7 @@ class CollisionWorld {
   /// One manifold's points (detect's first loop), and one body's on the half-spaces (its second).
   void addManifoldPoints(int manifold, const DetectRequest& request, PairScratch& scratch,
                          std::vector<ContactPoint>& points);
-  void addPlanePoints(std::size_t body, const DetectRequest& request, std::vector<ContactPoint>& points) const;
+  void addPlanePoints(std::size_t body, const DetectRequest& request, std::vector<ContactPoint>& points);
   /// Whether a speculative request covers the pair of points[first] (one of its bodies moves).
   bool movesInStep(const DetectRequest& request, const std::vector<ContactPoint>& points, std::size_t first) const;
   /// The body's features within max_distance of the half-space (and beyond `beyond`: those are marked

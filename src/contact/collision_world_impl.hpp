@@ -108,6 +108,15 @@ struct CollisionWorld::Impl {
     std::size_t object;
   };
   std::vector<Plane> planes;
+  // Per body: the half-spaces in its reach at its last full scan of them, and how far its origin may move
+  // from where it was then before one out of reach could come into it (CollisionWorld::addPlanePoints).
+  struct PlaneScan {
+    Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+    double reach = -1.0;  // none yet: the first detection scans
+    double slack = 0.0;
+    std::vector<std::size_t> near;
+  };
+  std::vector<PlaneScan> plane_scans;
   std::vector<int> plane_of_object;  // per object: its index in planes, or −1
   std::vector<CollisionShape> body_shapes;
   std::vector<Eigen::Isometry3d> shape_poses;  // X_WS of each body's shape as last placed

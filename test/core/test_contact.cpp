@@ -410,3 +410,49 @@ TEST(Contact, EveryIntegratorRestsABoxAndStopsASlidingOne) {
     EXPECT_NEAR(scene.state(1).p_WB.z(), 0.05, 1e-6) << name;
   }
 }
+
+namespace {
+
+// A ball and a spinning box thrown about inside four walls 1 m from the origin, with or without 1 996 more
+// half-spaces 50 m away all around: each body tests only the half-spaces in its reach at its last scan
+// until it has moved as far as the nearest other one was beyond its reach then (collision_world.cpp,
+// addPlanePoints). The walls start out of reach and come into it as the bodies fly at them.
+Scene thrownBetweenWalls(bool far_walls) {
+  ContactSetup setup;
+  setup.environment = {plane(Eigen::Vector3d::UnitZ(), 0.0, 0.3)};
+  for (const Eigen::Vector3d& n : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(-1, 0, 0), Eigen::Vector3d(0, 1, 0),
+                                   Eigen::Vector3d(0, -1, 0)}) {
+    setup.environment.push_back(plane(n, -1.0, 0.3, 0.8));  // solid beyond 1 m
+  }
+  for (int k = 0; far_walls && k < 1996; ++k) {
+    const double angle = 2.0 * kPi * k / 1996.0;
+    setup.environment.push_back(plane(Eigen::Vector3d(std::cos(angle), std::sin(angle), 0.0), -50.0, 0.3));
+  }
+  setup.settings.sleep = false;
+  setup.bodies = {shapeOf(ShapeType::kSphere, Eigen::Vector3d(0.1, 0, 0), 0.3, 0.8),
+                  shapeOf(ShapeType::kBox, Eigen::Vector3d(0.2, 0.15, 0.1), 0.3, 0.8)};
+  Scene scene({body(MassProperties::sphere(1.0, 0.1), Eigen::Vector3d(0.0, 0.0, 0.3), Eigen::Quaterniond::Identity(),
+                    Eigen::Vector3d(4.0, 2.5, 0.0), kDown),
+               reference::contactBody(MassProperties::box(1.0, Eigen::Vector3d(0.2, 0.15, 0.1)), Eigen::Vector3d(0.3, -0.4, 0.2),
+                                      Eigen::Quaterniond::Identity(), Eigen::Vector3d(-3.0, 1.7, 1.0),
+                                      Eigen::Vector3d(2.0, -5.0, 8.0), kDown)},
+              IntegratorType::kRk4, 1e-3, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+  scene.step(2000);
+  return scene;
+}
+
+}  // namespace
+
+TEST(Contact, HalfSpacesFarAwayChangeNothingAndTheNearOnesStillStopBodies) {
+  const Scene walls = thrownBetweenWalls(false), among_many = thrownBetweenWalls(true);
+  for (std::size_t b = 0; b < 2; ++b) {
+    const State& r = walls.state(b);
+    const State& o = among_many.state(b);
+    // Kept between the walls (4 and 3.5 m/s for 2 s would have carried either far beyond them).
+    EXPECT_LT(r.p_WB.head<2>().cwiseAbs().maxCoeff(), 1.0) << "body " << b;
+    EXPECT_EQ(r.p_WB, o.p_WB) << "body " << b;
+    EXPECT_EQ(r.P_W, o.P_W) << "body " << b;
+    EXPECT_EQ(r.L_W, o.L_W) << "body " << b;
+    EXPECT_EQ(r.q_WB.coeffs(), o.q_WB.coeffs()) << "body " << b;
+  }
+}
