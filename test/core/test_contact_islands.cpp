@@ -103,6 +103,12 @@ bool sameBits(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::memcmp(a.data(), b.data(), sizeof(double) * 3) == 0;
 }
 
+// Pose and momenta to the bit.
+bool sameBits(const State& a, const State& b) {
+  return sameBits(a.p_WB, b.p_WB) && sameBits(a.P_W, b.P_W) && sameBits(a.L_W, b.L_W) &&
+         std::memcmp(a.q_WB.coeffs().data(), b.q_WB.coeffs().data(), 4 * sizeof(double)) == 0;
+}
+
 TEST(ContactIslands, EachIslandConvergesOnItsOwnAndGetsWhatItWouldAlone) {
   // Island 0: a ball sliding on the ground (object 0, solver body 1; one point, which two sweeps settle);
   // island 1: a 1 000 kg box (object 2, body 3) on a 1 kg one (object 1, body 2) on the ground, which five
@@ -200,11 +206,7 @@ void expectSameBitsOnAnyNumberOfThreads(bool sleep) {
   for (const std::size_t threads : {2, 3, 4}) {
     const Scene other = run(threads);
     for (std::size_t b = 0; b < reference.bodyCount(); ++b) {
-      const State& r = reference.state(b);
-      const State& o = other.state(b);
-      EXPECT_TRUE(sameBits(r.p_WB, o.p_WB) && sameBits(r.P_W, o.P_W) && sameBits(r.L_W, o.L_W) &&
-                  std::memcmp(r.q_WB.coeffs().data(), o.q_WB.coeffs().data(), 4 * sizeof(double)) == 0)
-          << threads << " threads, body " << b;
+      EXPECT_TRUE(sameBits(reference.state(b), other.state(b))) << threads << " threads, body " << b;
       ASSERT_EQ(reference.contacts(b).size(), other.contacts(b).size()) << threads << " threads, body " << b;
       for (std::size_t c = 0; c < reference.contacts(b).size(); ++c) {
         EXPECT_EQ(reference.contacts(b)[c].normal_impulse, other.contacts(b)[c].normal_impulse);
@@ -300,11 +302,7 @@ TEST(ContactIslands, AMixedPileOnAMeshStepsToTheSameBitsOnAnyNumberOfThreads) {
   for (const std::size_t threads : {2, 3}) {
     const Scene other = run(threads);
     for (std::size_t b = 0; b < reference.bodyCount(); ++b) {
-      const State& r = reference.state(b);
-      const State& o = other.state(b);
-      EXPECT_TRUE(sameBits(r.p_WB, o.p_WB) && sameBits(r.P_W, o.P_W) && sameBits(r.L_W, o.L_W) &&
-                  std::memcmp(r.q_WB.coeffs().data(), o.q_WB.coeffs().data(), 4 * sizeof(double)) == 0)
-          << threads << " threads, body " << b;
+      EXPECT_TRUE(sameBits(reference.state(b), other.state(b))) << threads << " threads, body " << b;
     }
   }
 }
@@ -320,13 +318,7 @@ TEST(ContactIslands, AContactSceneStepsToTheSameBitsWithAndWithoutWideInstructio
     return scene;
   };
   const Scene wide = run(true), narrow = run(false);
-  for (std::size_t b = 0; b < wide.bodyCount(); ++b) {
-    const State& r = wide.state(b);
-    const State& o = narrow.state(b);
-    EXPECT_TRUE(sameBits(r.p_WB, o.p_WB) && sameBits(r.P_W, o.P_W) && sameBits(r.L_W, o.L_W) &&
-                std::memcmp(r.q_WB.coeffs().data(), o.q_WB.coeffs().data(), 4 * sizeof(double)) == 0)
-        << "body " << b;
-  }
+  for (std::size_t b = 0; b < wide.bodyCount(); ++b) EXPECT_TRUE(sameBits(wide.state(b), narrow.state(b))) << "body " << b;
 }
 
 }  // namespace
