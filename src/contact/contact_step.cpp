@@ -8,6 +8,7 @@
 
 #include "rigid_body_sim/kinematics.hpp"
 #include "rigid_body_sim/shape_registry.hpp"
+#include "rigid_body_sim/thread_pool.hpp"
 
 namespace rigid_body {
 namespace contact {
@@ -224,7 +225,7 @@ void ContactStep::stepWhole(SceneBodies& bodies, const std::vector<char>& runnin
   // 1. Free motion: every colliding body by its own integrator, as if nothing touched it (each on its own:
   // spread over the pool).
   const std::size_t per_block = scaledBlock(bodies_per_block_, kFreeStepBlocks);
-  forRanges(n, per_block, [&](std::size_t first, std::size_t end) {
+  forEachRange(pool_, n, per_block, [&](std::size_t, std::size_t first, std::size_t end) {
     for (std::size_t k = first; k < end; ++k) {
       const std::size_t body = colliders_[k];
       start_[k] = bodies.states[body];
@@ -309,11 +310,6 @@ std::size_t ContactStep::solverIndex(const SceneBodies& bodies, std::size_t obje
   const std::size_t s = solverSlot(object);
   if (solver_bodies_.size() > bodies_before) fillSolverBody(bodies, s);
   return s;
-}
-
-void ContactStep::forRanges(std::size_t count, std::size_t per_block,
-                            const std::function<void(std::size_t, std::size_t)>& body) {
-  forEachRange(pool_, count, per_block, [&](std::size_t, std::size_t first, std::size_t end) { body(first, end); });
 }
 
 void ContactStep::buildSolverLists() {

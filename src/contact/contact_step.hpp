@@ -5,7 +5,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -189,8 +188,6 @@ class ContactStep {
   // What one solved contact leaves for the next step, and its reports while recording.
   WarmPoint warmPointOf(std::size_t i, const SceneBodies& bodies, double h) const;
   void reportContact(std::size_t i);
-  // Runs body(first, end) over [0, count) in blocks of about `per_block`, on the pool where it has threads.
-  void forRanges(std::size_t count, std::size_t per_block, const std::function<void(std::size_t, std::size_t)>& body);
   // The admitted points of the step as the solver's lists, island by island: numbered here, filled by
   // fillBodies for the islands [first_island, end_island) and fillContacts for the contacts [first, end).
   void buildSolverLists();
