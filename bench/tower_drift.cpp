@@ -4,7 +4,10 @@
 // vertical displacement, the largest displacement of any cube, and the tower's lean: the largest tilt of a
 // cube and the sum of the tilts [rad].
 //
-// Usage: tower_drift tower|pyramid [CUBES or ROWS = 50] [SECONDS = 60] [SWEEPS = 20] [SLOP = 1e-4]
+// A twisted tower is a tower whose cubes are each turned about the vertical by 0.7 i rad and set off sideways
+// by up to 5 mm (no symmetry left for the solver to keep).
+//
+// Usage: tower_drift tower|twisted|pyramid [CUBES or ROWS = 50] [SECONDS = 60] [SWEEPS = 20] [SLOP = 1e-4]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -13,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "rigid_body_sim/references.hpp"
 #include "rigid_body_sim/scene.hpp"
 
@@ -20,6 +25,7 @@ using namespace rigid_body;
 
 int main(int argc, char** argv) {
   const bool pyramid = argc > 1 && std::string(argv[1]) == "pyramid";
+  const bool twisted = argc > 1 && std::string(argv[1]) == "twisted";
   const int size = argc > 2 ? std::atoi(argv[2]) : 50;
   const int seconds = argc > 3 ? std::atoi(argv[3]) : 60;
   const double side = 0.2;
@@ -29,9 +35,10 @@ int main(int argc, char** argv) {
   setup.settings.penetration_slop = argc > 5 ? std::atof(argv[5]) : setup.settings.penetration_slop;
   setup.settings.sleep = false;
   std::vector<BodyDefinition> cubes;
-  const auto add = [&](const Eigen::Vector3d& p) {
+  const auto add = [&](const Eigen::Vector3d& p, double yaw = 0.0) {
     cubes.push_back(reference::contactBody(MassProperties::box(1.0, Eigen::Vector3d::Constant(side)), p,
-                                           Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero(),
+                                           Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())),
+                                           Eigen::Vector3d::Zero(),
                                            Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0, -9.81)));
     setup.bodies.push_back(reference::collisionShape(ShapeType::kBox, Eigen::Vector3d::Constant(side), 0.5, 0.0));
   };
@@ -40,13 +47,17 @@ int main(int argc, char** argv) {
       for (int i = 0; i < size - r; ++i) add(Eigen::Vector3d((side + 0.001) * (i + 0.5 * r), 0.0, side * (r + 0.5)));
     }
   } else {
-    for (int i = 0; i < size; ++i) add(Eigen::Vector3d(0.0, 0.0, side * (i + 0.5)));
+    for (int i = 0; i < size; ++i) {
+      const Eigen::Vector3d offset = twisted ? Eigen::Vector3d(0.005 * std::sin(1.3 * i), 0.005 * std::cos(2.1 * i), 0.0)
+                                             : Eigen::Vector3d::Zero();
+      add(offset + Eigen::Vector3d(0.0, 0.0, side * (i + 0.5)), twisted ? 0.7 * i : 0.0);
+    }
   }
   Scene scene(cubes, IntegratorType::kRk4, 1e-3, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
   scene.step(500);
   std::vector<Eigen::Vector3d> settled;
   for (std::size_t i = 0; i < cubes.size(); ++i) settled.push_back(scene.state(i).p_WB);
-  std::printf("%s of %d, %d sweeps, slop %g m; from 0.5 s on:\n", pyramid ? "pyramid" : "tower", size,
+  std::printf("%s of %d, %d sweeps, slop %g m; from 0.5 s on:\n", pyramid ? "pyramid" : twisted ? "twisted tower" : "tower", size,
               setup.settings.iterations, setup.settings.penetration_slop);
   const auto start = std::chrono::steady_clock::now();
   for (int s = 1; s <= seconds; ++s) {

@@ -92,6 +92,8 @@ struct alignas(64) ManifoldLanes {
   std::uint32_t island[kWidth];
   std::size_t first_contact[kWidth];
   std::uint32_t lanes, slots;  // lanes in use; the most points of any of them
+  T inverse[kMaxManifoldPoints][kMaxManifoldPoints];  // K⁺ of the manifold's normal rows (joint_normals.hpp)
+  T joint;  // 1 where the lane's manifold's normals are solved together, else 0 (and K⁺ zero)
 };
 
 template <class T>
@@ -129,6 +131,40 @@ RIGID_BODY_LANE_INLINE void scatterVelocity(const Vec<T>& v, const Vec<T>& w, La
   body.w[2] = laneValue(w.z, lane);
 }
 
+/// A face's normal impulses together (solveJointNormals in lanes): the increments K⁺ (target − v_n) for all
+/// its points at once, kept in the lanes where none of them would fall below its floor; the point-by-point
+/// update follows either way.
+template <class T>
+RIGID_BODY_LANE_INLINE void jointNormals(ManifoldLanes<T>& g, LaneMask<T> live, Vec<T>& va, Vec<T>& wa, const T& ma,
+                                         Vec<T>& vb, Vec<T>& wb, const T& mb, T& change) {
+  LaneMask<T> ok = live & (g.joint > 0.0);
+  if (!anyLane(ok)) return;
+  T residual[kMaxManifoldPoints] = {};
+  for (std::size_t p = 0; p < g.slots; ++p) {
+    const PointLanes<T>& s = g.point[p];
+    const T v_n = dot(s.n, va - vb) + dot(s.cross_a[0], wa) - dot(s.cross_b[0], wb);
+    residual[p] = laneSelect<T>(s.present > 0.0, s.target_speed - v_n, T{});
+  }
+  T next[kMaxManifoldPoints] = {};
+  for (std::size_t p = 0; p < g.slots; ++p) {
+    const PointLanes<T>& s = g.point[p];
+    T d{};
+    for (std::size_t q = 0; q < g.slots; ++q) d = d + g.inverse[p][q] * residual[q];
+    next[p] = s.normal_impulse + d;
+    ok = ok & ((s.present <= 0.0) | (next[p] >= s.normal_floor));
+  }
+  if (!anyLane(ok)) return;
+  for (std::size_t p = 0; p < g.slots; ++p) {
+    PointLanes<T>& s = g.point[p];
+    const LaneMask<T> taken = ok & (s.present > 0.0);
+    const T dn = laneSelect<T>(taken, next[p] - s.normal_impulse, T{});
+    s.normal_impulse = laneSelect<T>(taken, next[p], s.normal_impulse);
+    va = va + (ma * dn) * s.n, wa = wa + dn * s.response_a[0];
+    vb = vb - (mb * dn) * s.n, wb = wb - dn * s.response_b[0];
+    change = laneMax(change, laneAbs(dn));
+  }
+}
+
 /// One sweep of a group's points, slot by slot: in each lane solveVelocities' update of one point (normal,
 /// then friction). Lanes off in `live` (their island converged, or no manifold) change nothing that is
 /// written back. Raises `change` and `impulse` lane by lane to the largest impulse change and impulse.
@@ -141,6 +177,7 @@ RIGID_BODY_LANE_INLINE void sweepGroup(ManifoldLanes<T>& g, LaneBodyVelocity* bo
     gatherVelocity(va, wa, ma, bodies[g.body_a[l]], l);
     gatherVelocity(vb, wb, mb, bodies[g.body_b[l]], l);
   }
+  jointNormals(g, live, va, wa, ma, vb, wb, mb, change);
   for (std::size_t p = 0; p < g.slots; ++p) {
     PointLanes<T>& s = g.point[p];
     const LaneMask<T> on = live & (s.present > 0.0);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "friction_disc.hpp"
+#include "joint_normals.hpp"
 
 namespace rigid_body {
 namespace contact {
@@ -98,38 +99,59 @@ bool solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBod
   return solveVelocities(contacts, bodies, options, SolveRange::all(contacts.size(), bodies.size()));
 }
 
+namespace {
+
+// Normal: v_n ≥ target, impulse ≥ its floor (a contact pushes, never pulls). Returns the impulse's change.
+double solvePointNormal(SolverContact& c, SolverBody& a, SolverBody& b) {
+  const Eigen::Vector3d dv = a.v - b.v;
+  const double v_n = c.n.dot(dv) + c.cross_a.col(0).dot(a.w) - c.cross_b.col(0).dot(b.w);
+  const double normal = std::max(c.normal_floor, c.normal_impulse - c.normal_mass * (v_n - c.target_speed));
+  const double dn = normal - c.normal_impulse;
+  c.normal_impulse = normal;
+  if (dn != 0.0) applyImpulse(a, b, c, dn * c.n, Eigen::Vector3d(dn, 0.0, 0.0));
+  return dn;
+}
+
+// Friction: stop the slip if the disc |f| ≤ μ f_n allows; else slide with μ f_n against the slip. (Scaling
+// the sticking impulse back onto the disc instead turns part of it sideways wherever the tangent mass is
+// not isotropic, as at a box's corner, and brakes a sliding box too little.) Returns the impulse's change.
+Eigen::Vector2d solvePointFriction(SolverContact& c, SolverBody& a, SolverBody& b) {
+  const Eigen::Vector3d dv = a.v - b.v;
+  const Eigen::Vector2d slip(c.t1.dot(dv) + c.cross_a.col(1).dot(a.w) - c.cross_b.col(1).dot(b.w),
+                             c.t2.dot(dv) + c.cross_a.col(2).dot(a.w) - c.cross_b.col(2).dot(b.w));
+  c.slip_squared = slip.squaredNorm();
+  Eigen::Vector2d friction = c.friction_impulse - c.tangent_mass * slip;
+  const double limit = c.friction * c.normal_impulse;
+  if (friction.squaredNorm() > limit * limit) friction = ontoFrictionDisc(friction, c.tangent_response, limit);
+  const Eigen::Vector2d df = friction - c.friction_impulse;
+  c.friction_impulse = friction;
+  if (!df.isZero(0.0)) applyImpulse(a, b, c, df.x() * c.t1 + df.y() * c.t2, Eigen::Vector3d(0.0, df.x(), df.y()));
+  return df;
+}
+
+}  // namespace
+
 bool solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options,
                      const SolveRange& range) {
   bool converged = false;
   const std::size_t sweeps = allowedSweeps(options, range.contact_end - range.contact_begin);
+  std::vector<JointManifold> manifolds;
+  jointManifolds(contacts, bodies, range.contact_begin, range.contact_end, manifolds);
   for (std::size_t iteration = 0; iteration < sweeps && !converged; ++iteration) {
     double largest_change = 0.0, largest_impulse = 0.0;
-    for (std::size_t k = range.contact_begin; k < range.contact_end; ++k) {
-      SolverContact& c = contacts[k];
-      SolverBody& a = bodies[c.a];
-      SolverBody& b = bodies[c.b];
-      // Normal: v_n ≥ target, impulse ≥ 0 (a contact pushes, never pulls).
-      const Eigen::Vector3d dv = a.v - b.v;
-      const double v_n = c.n.dot(dv) + c.cross_a.col(0).dot(a.w) - c.cross_b.col(0).dot(b.w);
-      const double normal = std::max(c.normal_floor, c.normal_impulse - c.normal_mass * (v_n - c.target_speed));
-      const double dn = normal - c.normal_impulse;
-      c.normal_impulse = normal;
-      if (dn != 0.0) applyImpulse(a, b, c, dn * c.n, Eigen::Vector3d(dn, 0.0, 0.0));
-      // Friction: stop the slip if the disc |f| ≤ μ f_n allows; else slide with μ f_n against the slip.
-      // (Scaling the sticking impulse back onto the disc instead turns part of it sideways wherever the
-      // tangent mass is not isotropic, as at a box's corner, and brakes a sliding box too little.)
-      const Eigen::Vector3d dv_t = a.v - b.v;
-      const Eigen::Vector2d slip(c.t1.dot(dv_t) + c.cross_a.col(1).dot(a.w) - c.cross_b.col(1).dot(b.w),
-                                 c.t2.dot(dv_t) + c.cross_a.col(2).dot(a.w) - c.cross_b.col(2).dot(b.w));
-      c.slip_squared = slip.squaredNorm();
-      Eigen::Vector2d friction = c.friction_impulse - c.tangent_mass * slip;
-      const double limit = c.friction * c.normal_impulse;
-      if (friction.squaredNorm() > limit * limit) friction = ontoFrictionDisc(friction, c.tangent_response, limit);
-      const Eigen::Vector2d df = friction - c.friction_impulse;
-      c.friction_impulse = friction;
-      if (!df.isZero(0.0)) applyImpulse(a, b, c, df.x() * c.t1 + df.y() * c.t2, Eigen::Vector3d(0.0, df.x(), df.y()));
-      largest_change = std::max({largest_change, std::abs(dn), df.lpNorm<Eigen::Infinity>()});
-      largest_impulse = std::max({largest_impulse, c.normal_impulse, c.friction_impulse.lpNorm<Eigen::Infinity>()});
+    for (const JointManifold& manifold : manifolds) {
+      // A face's normals together first (joint_normals.hpp), then each point's normal and friction: the
+      // points' own normal updates take up what the friction updates of the face's earlier points changed.
+      solveJointNormals(contacts, bodies, manifold, largest_change);
+      for (std::size_t k = manifold.first; k < manifold.first + manifold.count; ++k) {
+        SolverContact& c = contacts[k];
+        SolverBody& a = bodies[c.a];
+        SolverBody& b = bodies[c.b];
+        const double dn = solvePointNormal(c, a, b);
+        const Eigen::Vector2d df = solvePointFriction(c, a, b);
+        largest_change = std::max({largest_change, std::abs(dn), df.lpNorm<Eigen::Infinity>()});
+        largest_impulse = std::max({largest_impulse, c.normal_impulse, c.friction_impulse.lpNorm<Eigen::Infinity>()});
+      }
     }
     // To rounding within the sweeps asked for; beyond them (a small scene's budget), to a change of 1e-9 of
     // the impulses, far below anything a trajectory shows.

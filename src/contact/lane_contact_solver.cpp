@@ -4,6 +4,7 @@
 #include <type_traits>
 
 #include "contact_lanes.hpp"
+#include "joint_normals.hpp"
 #include "friction_disc.hpp"
 
 namespace rigid_body {
@@ -141,10 +142,23 @@ LaneContactSolver& LaneContactSolver::operator=(LaneContactSolver&&) noexcept = 
 
 namespace {
 
+// A lane's K⁺ of its manifold's normals where they are solved together (joint_normals.hpp), else zeros.
+template <class T>
+void loadJointInverse(ManifoldLanes<T>& g, std::size_t l, const std::vector<SolverContact>& contacts,
+                      const Manifold& manifold, const LaneBodyVelocity* store) {
+  JointInverse inverse = {};
+  const bool joint = jointNormalInverse(&contacts[manifold.first], manifold.count, store[g.body_a[l]].inverse_mass,
+                                        store[g.body_b[l]].inverse_mass, inverse);
+  setLane(g.joint, l, joint ? 1.0 : 0.0);
+  for (std::size_t p = 0; p < kMaxManifoldPoints; ++p) {
+    for (std::size_t q = 0; q < kMaxManifoldPoints; ++q) setLane(g.inverse[p][q], l, inverse[p * kMaxManifoldPoints + q]);
+  }
+}
+
 // The colouring's manifolds in groups of kLaneCount<T>, colour by colour; an overflow manifold alone.
 template <class T>
 void packGroups(const ManifoldColouring& colouring, const std::vector<SolverContact>& contacts,
-                std::size_t body_base, std::vector<ManifoldLanes<T>>& groups) {
+                std::size_t body_base, const LaneBodyVelocity* store, std::vector<ManifoldLanes<T>>& groups) {
   constexpr std::size_t kWidth = kLaneCount<T>;
   const auto local = [&](std::size_t s) { return static_cast<std::uint32_t>(s == kEnvironment ? 0 : s - body_base + 1); };
   const std::vector<Manifold>& manifolds = colouring.manifolds();
@@ -164,6 +178,7 @@ void packGroups(const ManifoldColouring& colouring, const std::vector<SolverCont
         g.first_contact[l] = manifold.first;
         g.slots = std::max(g.slots, manifold.count);
         for (std::size_t p = 0; p < manifold.count; ++p) loadPoint(g.point[p], l, contacts[manifold.first + p]);
+        loadJointInverse(g, l, contacts, manifold, store);
       }
     }
   }
@@ -234,7 +249,7 @@ void LaneContactSolver::solve(std::vector<SolverContact>& contacts, std::vector<
   buffers.bodies.assign(body_end - body_base + 1, LaneBodyVelocity{{0, 0, 0}, {0, 0, 0}, 0.0});
   gatherBodies(bodies, islands, count, body_base, buffers.bodies);
   const auto sweep = [&](auto& groups) {
-    packGroups(colouring_, contacts, body_base, groups);
+    packGroups(colouring_, contacts, body_base, buffers.bodies.data(), groups);
     runSweepsWidest(lanes.wide_instructions, groups, buffers.bodies.data(), contacts.data(), sweeps, converged,
                     options.iterations);
     unpackGroups(groups, contacts);

@@ -1,8 +1,12 @@
 // Stacking that must hold for a long time: a pyramid of 20 rows of cubes (210 bodies, each resting on the
 // two below it) stands, every cube within 1 mm of where it settled, as the stability target for contact
-// asks of 60 s (here 10 s; bench/tower_drift.cpp runs the 60, docs/performance.md has the figures).
+// asks of 60 s (here 10 s; bench/tower_drift.cpp runs the 60, docs/performance.md has the figures); towers
+// of ten and more stand to the stack-of-ten target, and twisted ones within the slop.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "rigid_body_sim/references.hpp"
@@ -33,4 +37,60 @@ TEST(Stacking, APyramidOfTwentyRowsStandsWithinAMillimetre) {
   double largest = 0.0;
   for (std::size_t i = 0; i < cubes.size(); ++i) largest = std::max(largest, (scene.state(i).p_WB - settled[i]).norm());
   EXPECT_LE(largest, 1e-3);
+}
+
+namespace {
+
+// A tower of boxes on the ground, box i of `size` and mass masses[i], turned about the vertical by yaw · i
+// and set off sideways by up to `offset`; settled for 0.5 s. Returns how far its top moves over the next
+// `seconds`.
+double towerTopMovement(const Eigen::Vector3d& size, const std::vector<double>& masses, double yaw, double offset,
+                        double seconds) {
+  ContactSetup setup;
+  setup.environment = {reference::groundPlane(Eigen::Vector3d::UnitZ(), 0.5)};
+  setup.settings.sleep = false;  // standing by itself, not held by sleep
+  std::vector<BodyDefinition> boxes;
+  for (std::size_t i = 0; i < masses.size(); ++i) {
+    const double k = static_cast<double>(i);
+    const Eigen::Vector3d place(offset * std::sin(1.3 * k), offset * std::cos(2.1 * k), size.z() * (k + 0.5));
+    boxes.push_back(reference::contactBody(MassProperties::box(masses[i], size), place,
+                                           Eigen::Quaterniond(Eigen::AngleAxisd(yaw * k, Eigen::Vector3d::UnitZ())),
+                                           Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0, -9.81)));
+    setup.bodies.push_back(reference::collisionShape(ShapeType::kBox, size, 0.5, 0.0));
+  }
+  Scene scene(boxes, IntegratorType::kRk4, 1e-3, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+  scene.step(500);
+  const Eigen::Vector3d settled = scene.state(boxes.size() - 1).p_WB;
+  double largest = 0.0;
+  for (int s = 0; s < static_cast<int>(seconds * 10.0); ++s) {
+    scene.step(100);
+    largest = std::max(largest, (scene.state(boxes.size() - 1).p_WB - settled).norm());
+  }
+  return largest;
+}
+
+}  // namespace
+
+// The stability target for a stack of ten: its top within 0.01 mm of where it stood at 0.5 s for the next
+// 10 s. Towers of other heights, sizes and mass ratios (light on heavy and heavy on light) hold to the same.
+// Solved point by point, a face's four corners undo each other's impulses and a stack of ten rocks by
+// 0.04 mm (docs/performance_log.md, "A settled stack's sweeps do not converge").
+TEST(Stacking, TowersOfBoxesStandToAHundredthOfAMillimetre) {
+  const Eigen::Vector3d cube(0.2, 0.2, 0.2);
+  EXPECT_LE(towerTopMovement(cube, std::vector<double>(10, 1.0), 0.0, 0.0, 10.0), 1e-5) << "ten cubes";
+  EXPECT_LE(towerTopMovement(0.5 * cube, std::vector<double>(15, 0.125), 0.0, 0.0, 10.0), 1e-5) << "fifteen";
+  std::vector<double> alternating, rising;
+  for (int i = 0; i < 10; ++i) alternating.push_back(i % 2 == 0 ? 1.0 : 10.0);
+  for (int i = 0; i < 12; ++i) rising.push_back(1.0 + i);
+  EXPECT_LE(towerTopMovement(Eigen::Vector3d(0.4, 0.3, 0.2), alternating, 0.0, 0.0, 10.0), 1e-5) << "1 and 10 kg";
+  EXPECT_LE(towerTopMovement(cube, rising, 0.0, 0.0, 10.0), 1e-5) << "heavier upward";
+}
+
+// No symmetry to keep: each cube turned by 0.7 rad from the one below and set off by up to 5 mm. Such a
+// tower stands within the penetration slop (what each interface may give: docs/contact.md).
+TEST(Stacking, ATwistedTowerStandsWithinTheSlop) {
+  const Eigen::Vector3d cube(0.2, 0.2, 0.2);
+  const double slop = ContactSettings().penetration_slop;
+  EXPECT_LE(towerTopMovement(cube, std::vector<double>(10, 1.0), 0.7, 0.005, 10.0), slop) << "ten cubes";
+  EXPECT_LE(towerTopMovement(cube, std::vector<double>(15, 1.0), 0.7, 0.005, 10.0), slop) << "fifteen";
 }
