@@ -12,6 +12,7 @@
 
 #include "contact_solver.hpp"
 #include "integrators/lane_math.hpp"
+#include "joint_normals.hpp"
 #include "manifold_colouring.hpp"
 
 namespace rigid_body {
@@ -92,7 +93,7 @@ struct alignas(64) ManifoldLanes {
   std::uint32_t island[kWidth];
   std::size_t first_contact[kWidth];
   std::uint32_t lanes, slots;  // lanes in use; the most points of any of them
-  T inverse[kMaxManifoldPoints][kMaxManifoldPoints];  // K⁺ of the manifold's normal rows (joint_normals.hpp)
+  T inverse[kJointEntries];  // K⁺ of the manifold's normal rows, its upper triangle (joint_normals.hpp)
   T joint;  // 1 where the lane's manifold's normals are solved together, else 0 (and K⁺ zero)
 };
 
@@ -149,7 +150,7 @@ RIGID_BODY_LANE_INLINE void jointNormals(ManifoldLanes<T>& g, LaneMask<T> live, 
   for (std::size_t p = 0; p < g.slots; ++p) {
     const PointLanes<T>& s = g.point[p];
     T d{};
-    for (std::size_t q = 0; q < g.slots; ++q) d = d + g.inverse[p][q] * residual[q];
+    for (std::size_t q = 0; q < g.slots; ++q) d = d + g.inverse[jointEntry(p, q)] * residual[q];
     next[p] = s.normal_impulse + d;
     ok = ok & ((s.present <= 0.0) | (next[p] >= s.normal_floor));
   }

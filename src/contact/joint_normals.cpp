@@ -22,11 +22,12 @@ Eigen::Matrix4d normalCoupling(const SolverContact* points, std::size_t count, d
                                double inverse_mass_b) {
   Eigen::Matrix4d K = Eigen::Matrix4d::Zero();
   for (std::size_t i = 0; i < count; ++i) {
-    for (std::size_t j = 0; j < count; ++j) {
+    for (std::size_t j = i; j < count; ++j) {  // symmetric: I⁻¹ is
       const SolverContact& p = points[i];
       const SolverContact& q = points[j];
       K(i, j) = (inverse_mass_a + inverse_mass_b) * p.n.dot(q.n) + p.cross_a.col(0).dot(q.response_a.col(0)) +
                 p.cross_b.col(0).dot(q.response_b.col(0));
+      K(j, i) = K(i, j);
     }
   }
   return K;
@@ -71,7 +72,7 @@ bool jointNormalInverse(const SolverContact* points, std::size_t count, double i
   }
   if (!B.allFinite()) return false;
   for (std::size_t i = 0; i < kMaxManifoldPoints; ++i) {
-    for (std::size_t j = 0; j < kMaxManifoldPoints; ++j) inverse[i * kMaxManifoldPoints + j] = B(i, j);
+    for (std::size_t j = i; j < kMaxManifoldPoints; ++j) inverse[jointEntry(i, j)] = B(i, j);
   }
   return true;
 }
@@ -107,7 +108,7 @@ bool solveJointNormals(std::vector<SolverContact>& contacts, std::vector<SolverB
     const SolverContact& c = contacts[manifold.first + p];
     double increment = 0.0;
     for (std::size_t q = 0; q < manifold.count; ++q) {
-      increment += manifold.inverse[p * kMaxManifoldPoints + q] * residual[q];
+      increment += manifold.inverse[jointEntry(p, q)] * residual[q];
     }
     next[p] = c.normal_impulse + increment;
     if (!(next[p] >= c.normal_floor)) return false;  // it would pull somewhere: point by point instead

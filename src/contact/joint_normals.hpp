@@ -11,8 +11,12 @@
 namespace rigid_body {
 namespace contact {
 
-/// Entries of a manifold's K⁺, row-major, kMaxManifoldPoints to a row.
-using JointInverse = double[kMaxManifoldPoints * kMaxManifoldPoints];
+/// A manifold's K⁺, symmetric: its upper triangle, row by row (entry (p, q) at jointEntry(p, q)).
+constexpr std::size_t kJointEntries = kMaxManifoldPoints * (kMaxManifoldPoints + 1) / 2;
+using JointInverse = double[kJointEntries];
+constexpr std::size_t jointEntry(std::size_t p, std::size_t q) {
+  return p <= q ? p * kMaxManifoldPoints - p * (p - 1) / 2 + (q - p) : jointEntry(q, p);
+}
 
 /// K⁺ of the normal rows of `count` consecutive contacts of one pair (K_ij = J_i M⁻¹ J_jᵀ, its least-norm
 /// inverse over the face's three normal velocity coordinates) into `inverse`, rows and columns beyond

@@ -150,9 +150,7 @@ void loadJointInverse(ManifoldLanes<T>& g, std::size_t l, const std::vector<Solv
   const bool joint = jointNormalInverse(&contacts[manifold.first], manifold.count, store[g.body_a[l]].inverse_mass,
                                         store[g.body_b[l]].inverse_mass, inverse);
   setLane(g.joint, l, joint ? 1.0 : 0.0);
-  for (std::size_t p = 0; p < kMaxManifoldPoints; ++p) {
-    for (std::size_t q = 0; q < kMaxManifoldPoints; ++q) setLane(g.inverse[p][q], l, inverse[p * kMaxManifoldPoints + q]);
-  }
+  for (std::size_t e = 0; e < kJointEntries; ++e) setLane(g.inverse[e], l, inverse[e]);
 }
 
 // The colouring's manifolds in groups of kLaneCount<T>, colour by colour; an overflow manifold alone.

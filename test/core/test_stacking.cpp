@@ -1,7 +1,7 @@
 // Stacking that must hold for a long time: a pyramid of 20 rows of cubes (210 bodies, each resting on the
 // two below it) stands, every cube within 1 mm of where it settled, as the stability target for contact
 // asks of 60 s (here 10 s; bench/tower_drift.cpp runs the 60, docs/performance.md has the figures); towers
-// of ten and more stand to the stack-of-ten target, and twisted ones within the slop.
+// of ten and more stand to the stack-of-ten target, and twisted ones to the tall towers' 1 mm.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -86,11 +86,13 @@ TEST(Stacking, TowersOfBoxesStandToAHundredthOfAMillimetre) {
   EXPECT_LE(towerTopMovement(cube, rising, 0.0, 0.0, 10.0), 1e-5) << "heavier upward";
 }
 
-// No symmetry to keep: each cube turned by 0.7 rad from the one below and set off by up to 5 mm. Such a
-// tower stands within the penetration slop (what each interface may give: docs/contact.md).
-TEST(Stacking, ATwistedTowerStandsWithinTheSlop) {
+// No symmetry to keep: each cube turned about the vertical from the one below and set off by up to 5 mm.
+// Such towers settle within their slop by steps (a corner's point re-seated moves the top by a few tenths of
+// a millimetre), so they are held to the tall towers' target: the top within 1 mm over the time asked for.
+// Point by point, a twisted tower of 20 moved 7 to 20 mm in 10 s (docs/performance_log.md).
+TEST(Stacking, TwistedTowersStandWithinAMillimetre) {
   const Eigen::Vector3d cube(0.2, 0.2, 0.2);
-  const double slop = ContactSettings().penetration_slop;
-  EXPECT_LE(towerTopMovement(cube, std::vector<double>(10, 1.0), 0.7, 0.005, 10.0), slop) << "ten cubes";
-  EXPECT_LE(towerTopMovement(cube, std::vector<double>(15, 1.0), 0.7, 0.005, 10.0), slop) << "fifteen";
+  EXPECT_LE(towerTopMovement(cube, std::vector<double>(20, 1.0), 0.7, 0.005, 10.0), 1e-3) << "20, 0.7 rad";
+  EXPECT_LE(towerTopMovement(cube, std::vector<double>(20, 1.0), 0.4, 0.005, 10.0), 1e-3) << "20, 0.4 rad";
+  EXPECT_LE(towerTopMovement(cube, std::vector<double>(15, 1.0), 1.1, 0.005, 10.0), 1e-3) << "15, 1.1 rad";
 }
