@@ -92,9 +92,11 @@ struct alignas(64) ManifoldLanes {
   std::uint32_t body_a[kWidth], body_b[kWidth];  // indices into the block's LaneBodyVelocity (0: environment)
   std::uint32_t island[kWidth];
   std::size_t first_contact[kWidth];
+  std::uint32_t count[kWidth];  // the lane's manifold's points
   std::uint32_t lanes, slots;  // lanes in use; the most points of any of them
   T inverse[kJointEntries];  // K⁺ of the manifold's normal rows, its upper triangle (joint_normals.hpp)
-  T joint;  // 1 where the lane's manifold's normals are solved together, else 0 (and K⁺ zero)
+  T inverted;  // 1 once K⁺ has been looked for (the first time the face was not at rest), else 0
+  T joint;     // 1 where the lane's manifold has a K⁺ and its normals are solved together, else 0
 };
 
 template <class T>
@@ -132,20 +134,48 @@ RIGID_BODY_LANE_INLINE void scatterVelocity(const Vec<T>& v, const Vec<T>& w, La
   body.w[2] = laneValue(w.z, lane);
 }
 
-/// A face's normal impulses together (solveJointNormals in lanes): the increments K⁺ (target − v_n) for all
-/// its points at once, kept in the lanes where none of them would fall below its floor; the point-by-point
-/// update follows either way.
+/// K⁺ of the manifolds in the lanes set in `lanes` (bit l for lane l), found once (invertJointManifolds'
+/// rule, in solveJointNormals). Outside the lanes' instructions: Eigen's.
 template <class T>
-RIGID_BODY_LANE_INLINE void jointNormals(ManifoldLanes<T>& g, LaneMask<T> live, Vec<T>& va, Vec<T>& wa, const T& ma,
+__attribute__((noinline)) void invertLanes(ManifoldLanes<T>& g, unsigned lanes, const LaneBodyVelocity* bodies,
+                                           const SolverContact* contacts) {
+  for (std::size_t l = 0; l < g.lanes; ++l) {
+    if (((lanes >> l) & 1u) == 0) continue;
+    JointInverse inverse = {};
+    const bool joint = jointNormalInverse(&contacts[g.first_contact[l]], g.count[l], bodies[g.body_a[l]].inverse_mass,
+                                          bodies[g.body_b[l]].inverse_mass, inverse);
+    setLane(g.inverted, l, 1.0), setLane(g.joint, l, joint ? 1.0 : 0.0);
+    for (std::size_t e = 0; e < kJointEntries; ++e) setLane(g.inverse[e], l, inverse[e]);
+  }
+}
+
+/// A face's normal impulses together (solveJointNormals in lanes): in the lanes whose face is not at rest
+/// (kFaceAtRest) and has a K⁺ (found here the first time), the increments K⁺ (target − v_n) for all its
+/// points at once, kept where none of them would fall below its floor; the point-by-point update follows
+/// either way.
+template <class T>
+RIGID_BODY_LANE_INLINE void jointNormals(ManifoldLanes<T>& g, LaneMask<T> live, const LaneBodyVelocity* bodies,
+                                         const SolverContact* contacts, Vec<T>& va, Vec<T>& wa, const T& ma,
                                          Vec<T>& vb, Vec<T>& wb, const T& mb, T& change) {
-  LaneMask<T> ok = live & (g.joint > 0.0);
+  LaneMask<T> ok = live & ((g.inverted <= 0.0) | (g.joint > 0.0));
   if (!anyLane(ok)) return;
   T residual[kMaxManifoldPoints] = {};
+  LaneMask<T> at_rest = T{} <= T{};
   for (std::size_t p = 0; p < g.slots; ++p) {
     const PointLanes<T>& s = g.point[p];
     const T v_n = dot(s.n, va - vb) + dot(s.cross_a[0], wa) - dot(s.cross_b[0], wb);
     residual[p] = laneSelect<T>(s.present > 0.0, s.target_speed - v_n, T{});
+    at_rest = at_rest & ((s.present <= 0.0) | (laneAbs(s.normal_mass * residual[p]) <= kFaceAtRest * s.normal_impulse));
   }
+  ok = ok & (laneSelect<T>(at_rest, T{} + 1.0, T{}) <= 0.0);
+  const LaneMask<T> to_invert = ok & (g.inverted <= 0.0);
+  if (anyLane(to_invert)) {
+    unsigned lanes = 0;
+    for (std::size_t l = 0; l < g.lanes; ++l) lanes |= laneOn(to_invert, l) ? 1u << l : 0u;
+    invertLanes(g, lanes, bodies, contacts);
+  }
+  ok = ok & (g.joint > 0.0);
+  if (!anyLane(ok)) return;
   T next[kMaxManifoldPoints] = {};
   for (std::size_t p = 0; p < g.slots; ++p) {
     const PointLanes<T>& s = g.point[p];
@@ -178,7 +208,7 @@ RIGID_BODY_LANE_INLINE void sweepGroup(ManifoldLanes<T>& g, LaneBodyVelocity* bo
     gatherVelocity(va, wa, ma, bodies[g.body_a[l]], l);
     gatherVelocity(vb, wb, mb, bodies[g.body_b[l]], l);
   }
-  jointNormals(g, live, va, wa, ma, vb, wb, mb, change);
+  jointNormals(g, live, bodies, contacts, va, wa, ma, vb, wb, mb, change);
   for (std::size_t p = 0; p < g.slots; ++p) {
     PointLanes<T>& s = g.point[p];
     const LaneMask<T> on = live & (s.present > 0.0);

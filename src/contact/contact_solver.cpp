@@ -136,10 +136,10 @@ bool solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBod
   bool converged = false;
   const std::size_t sweeps = allowedSweeps(options, range.contact_end - range.contact_begin);
   std::vector<JointManifold> manifolds;
-  jointManifolds(contacts, bodies, range.contact_begin, range.contact_end, manifolds);
+  jointManifolds(contacts, range.contact_begin, range.contact_end, manifolds);
   for (std::size_t iteration = 0; iteration < sweeps && !converged; ++iteration) {
     double largest_change = 0.0, largest_impulse = 0.0;
-    for (const JointManifold& manifold : manifolds) {
+    for (JointManifold& manifold : manifolds) {
       // A face's normals together first (joint_normals.hpp), then each point's normal and friction: the
       // points' own normal updates take up what the friction updates of the face's earlier points changed.
       solveJointNormals(contacts, bodies, manifold, largest_change);

@@ -77,8 +77,8 @@ bool jointNormalInverse(const SolverContact* points, std::size_t count, double i
   return true;
 }
 
-void jointManifolds(const std::vector<SolverContact>& contacts, const std::vector<SolverBody>& bodies,
-                    std::size_t begin, std::size_t end, std::vector<JointManifold>& manifolds) {
+void jointManifolds(const std::vector<SolverContact>& contacts, std::size_t begin, std::size_t end,
+                    std::vector<JointManifold>& manifolds) {
   manifolds.clear();
   for (std::size_t k = begin; k < end;) {
     JointManifold& m = manifolds.emplace_back();
@@ -87,22 +87,29 @@ void jointManifolds(const std::vector<SolverContact>& contacts, const std::vecto
            contacts[k].b == contacts[m.first].b) {
       ++m.count, ++k;
     }
-    const SolverContact& c = contacts[m.first];
-    m.joint = jointNormalInverse(&contacts[m.first], m.count, c.a == kEnvironment ? 0.0 : bodies[c.a].inverse_mass,
-                                 c.b == kEnvironment ? 0.0 : bodies[c.b].inverse_mass, m.inverse);
   }
 }
 
 bool solveJointNormals(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies,
-                       const JointManifold& manifold, double& largest_change) {
-  if (!manifold.joint) return false;
+                       JointManifold& manifold, double& largest_change) {
+  if (manifold.inverted && !manifold.joint) return false;
   double residual[kMaxManifoldPoints] = {}, next[kMaxManifoldPoints] = {};
+  bool at_rest = true;
   for (std::size_t p = 0; p < manifold.count; ++p) {
     const SolverContact& c = contacts[manifold.first + p];
     const SolverBody& a = bodies[c.a];
     const SolverBody& b = bodies[c.b];
     const double v_n = c.n.dot(a.v - b.v) + c.cross_a.col(0).dot(a.w) - c.cross_b.col(0).dot(b.w);
     residual[p] = c.target_speed - v_n;
+    at_rest = at_rest && std::abs(c.normal_mass * residual[p]) <= kFaceAtRest * c.normal_impulse;
+  }
+  if (at_rest) return false;
+  if (!manifold.inverted) {
+    const SolverContact& c = contacts[manifold.first];
+    manifold.joint = jointNormalInverse(&c, manifold.count, c.a == kEnvironment ? 0.0 : bodies[c.a].inverse_mass,
+                                        c.b == kEnvironment ? 0.0 : bodies[c.b].inverse_mass, manifold.inverse);
+    manifold.inverted = true;
+    if (!manifold.joint) return false;
   }
   for (std::size_t p = 0; p < manifold.count; ++p) {
     const SolverContact& c = contacts[manifold.first + p];

@@ -25,21 +25,27 @@ constexpr std::size_t jointEntry(std::size_t p, std::size_t q) {
 bool jointNormalInverse(const SolverContact* points, std::size_t count, double inverse_mass_a,
                         double inverse_mass_b, JointInverse& inverse);
 
+/// A face is left to its points while each point's residual would move its impulse by no more than this
+/// fraction of it (normal mass × |target − v_n| ≤ kFaceAtRest λ): a warm start that already holds it, as for
+/// a box resting alone, needs neither K⁺ nor the update. The solve's own tolerance within its sweeps.
+constexpr double kFaceAtRest = 1e-14;
+
 /// The readable solver's manifolds: runs of up to kMaxManifoldPoints consecutive contacts of one pair in
-/// [begin, end), as the lane solver's colouring forms them, and each one's K⁺ where it has one.
+/// [begin, end), as the lane solver's colouring forms them. K⁺ is found the first time a face is not at
+/// rest (`inverted`), and `joint` says whether it has one.
 struct JointManifold {
   std::size_t first = 0, count = 0;
-  bool joint = false;
+  bool inverted = false, joint = false;
   JointInverse inverse = {};
 };
-void jointManifolds(const std::vector<SolverContact>& contacts, const std::vector<SolverBody>& bodies,
-                    std::size_t begin, std::size_t end, std::vector<JointManifold>& manifolds);
+void jointManifolds(const std::vector<SolverContact>& contacts, std::size_t begin, std::size_t end,
+                    std::vector<JointManifold>& manifolds);
 
-/// One joint update of a manifold's normal impulses: the increments K⁺ (target − v_n) taken together if
-/// none leaves an impulse below its floor, else none. True if taken; raises `largest_change` to the largest
-/// increment's size.
+/// One joint update of a manifold's normal impulses: the increments K⁺ (target − v_n) taken together if the
+/// face is not at rest, has a K⁺ and none of them leaves an impulse below its floor, else none. True if
+/// taken; raises `largest_change` to the largest increment's size.
 bool solveJointNormals(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies,
-                       const JointManifold& manifold, double& largest_change);
+                       JointManifold& manifold, double& largest_change);
 
 }  // namespace contact
 }  // namespace rigid_body

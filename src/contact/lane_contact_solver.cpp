@@ -142,21 +142,10 @@ LaneContactSolver& LaneContactSolver::operator=(LaneContactSolver&&) noexcept = 
 
 namespace {
 
-// A lane's K⁺ of its manifold's normals where they are solved together (joint_normals.hpp), else zeros.
-template <class T>
-void loadJointInverse(ManifoldLanes<T>& g, std::size_t l, const std::vector<SolverContact>& contacts,
-                      const Manifold& manifold, const LaneBodyVelocity* store) {
-  JointInverse inverse = {};
-  const bool joint = jointNormalInverse(&contacts[manifold.first], manifold.count, store[g.body_a[l]].inverse_mass,
-                                        store[g.body_b[l]].inverse_mass, inverse);
-  setLane(g.joint, l, joint ? 1.0 : 0.0);
-  for (std::size_t e = 0; e < kJointEntries; ++e) setLane(g.inverse[e], l, inverse[e]);
-}
-
 // The colouring's manifolds in groups of kLaneCount<T>, colour by colour; an overflow manifold alone.
 template <class T>
 void packGroups(const ManifoldColouring& colouring, const std::vector<SolverContact>& contacts,
-                std::size_t body_base, const LaneBodyVelocity* store, std::vector<ManifoldLanes<T>>& groups) {
+                std::size_t body_base, std::vector<ManifoldLanes<T>>& groups) {
   constexpr std::size_t kWidth = kLaneCount<T>;
   const auto local = [&](std::size_t s) { return static_cast<std::uint32_t>(s == kEnvironment ? 0 : s - body_base + 1); };
   const std::vector<Manifold>& manifolds = colouring.manifolds();
@@ -174,9 +163,9 @@ void packGroups(const ManifoldColouring& colouring, const std::vector<SolverCont
         g.body_a[l] = local(first.a), g.body_b[l] = local(first.b);
         g.island[l] = manifold.island;
         g.first_contact[l] = manifold.first;
+        g.count[l] = static_cast<std::uint32_t>(manifold.count);
         g.slots = std::max(g.slots, manifold.count);
         for (std::size_t p = 0; p < manifold.count; ++p) loadPoint(g.point[p], l, contacts[manifold.first + p]);
-        loadJointInverse(g, l, contacts, manifold, store);
       }
     }
   }
@@ -247,7 +236,7 @@ void LaneContactSolver::solve(std::vector<SolverContact>& contacts, std::vector<
   buffers.bodies.assign(body_end - body_base + 1, LaneBodyVelocity{{0, 0, 0}, {0, 0, 0}, 0.0});
   gatherBodies(bodies, islands, count, body_base, buffers.bodies);
   const auto sweep = [&](auto& groups) {
-    packGroups(colouring_, contacts, body_base, buffers.bodies.data(), groups);
+    packGroups(colouring_, contacts, body_base, groups);
     runSweepsWidest(lanes.wide_instructions, groups, buffers.bodies.data(), contacts.data(), sweeps, converged,
                     options.iterations);
     unpackGroups(groups, contacts);
