@@ -160,14 +160,14 @@ RIGID_BODY_LANE_INLINE void jointNormals(ManifoldLanes<T>& g, LaneMask<T> live, 
   LaneMask<T> ok = live & ((g.inverted <= 0.0) | (g.joint > 0.0));
   if (!anyLane(ok)) return;
   T residual[kMaxManifoldPoints] = {};
-  LaneMask<T> at_rest = T{} <= T{};
+  LaneMask<T> moving = T{} < T{};  // some point's residual beyond kFaceAtRest
   for (std::size_t p = 0; p < g.slots; ++p) {
     const PointLanes<T>& s = g.point[p];
     const T v_n = dot(s.n, va - vb) + dot(s.cross_a[0], wa) - dot(s.cross_b[0], wb);
     residual[p] = laneSelect<T>(s.present > 0.0, s.target_speed - v_n, T{});
-    at_rest = at_rest & ((s.present <= 0.0) | (laneAbs(s.normal_mass * residual[p]) <= kFaceAtRest * s.normal_impulse));
+    moving = moving | ((s.present > 0.0) & (laneAbs(s.normal_mass * residual[p]) > kFaceAtRest * s.normal_impulse));
   }
-  ok = ok & (laneSelect<T>(at_rest, T{} + 1.0, T{}) <= 0.0);
+  ok = ok & moving;
   const LaneMask<T> to_invert = ok & (g.inverted <= 0.0);
   if (anyLane(to_invert)) {
     unsigned lanes = 0;

@@ -103,9 +103,8 @@ namespace {
 
 // Normal: v_n ≥ target, impulse ≥ its floor (a contact pushes, never pulls). Returns the impulse's change.
 double solvePointNormal(SolverContact& c, SolverBody& a, SolverBody& b) {
-  const Eigen::Vector3d dv = a.v - b.v;
-  const double v_n = c.n.dot(dv) + c.cross_a.col(0).dot(a.w) - c.cross_b.col(0).dot(b.w);
-  const double normal = std::max(c.normal_floor, c.normal_impulse - c.normal_mass * (v_n - c.target_speed));
+  const double normal =
+      std::max(c.normal_floor, c.normal_impulse - c.normal_mass * (normalSpeed(c, a, b) - c.target_speed));
   const double dn = normal - c.normal_impulse;
   c.normal_impulse = normal;
   if (dn != 0.0) applyImpulse(a, b, c, dn * c.n, Eigen::Vector3d(dn, 0.0, 0.0));

@@ -96,6 +96,12 @@ struct SolveRange {
   static SolveRange all(std::size_t contacts, std::size_t bodies) { return {0, contacts, 0, bodies}; }
 };
 
+/// The contact's normal relative speed, J_n V = n·(v_a − v_b) + (r_a × n)·ω_a − (r_b × n)·ω_b (needs the
+/// products prepareContacts makes).
+inline double normalSpeed(const SolverContact& c, const SolverBody& a, const SolverBody& b) {
+  return c.n.dot(a.v - b.v) + c.cross_a.col(0).dot(a.w) - c.cross_b.col(0).dot(b.w);
+}
+
 /// The relative velocity of the contact point of a with respect to b's.
 Eigen::Vector3d relativeVelocity(const SolverContact& contact, const std::vector<SolverBody>& bodies);
 

@@ -83,10 +83,8 @@ void jointManifolds(const std::vector<SolverContact>& contacts, std::size_t begi
   for (std::size_t k = begin; k < end;) {
     JointManifold& m = manifolds.emplace_back();
     m.first = k;
-    while (k < end && m.count < kMaxManifoldPoints && contacts[k].a == contacts[m.first].a &&
-           contacts[k].b == contacts[m.first].b) {
-      ++m.count, ++k;
-    }
+    m.count = manifoldLength(contacts, k, end);
+    k += m.count;
   }
 }
 
@@ -94,20 +92,17 @@ bool solveJointNormals(std::vector<SolverContact>& contacts, std::vector<SolverB
                        JointManifold& manifold, double& largest_change) {
   if (manifold.inverted && !manifold.joint) return false;
   double residual[kMaxManifoldPoints] = {}, next[kMaxManifoldPoints] = {};
-  bool at_rest = true;
+  bool moving = false;  // some point's residual beyond kFaceAtRest
   for (std::size_t p = 0; p < manifold.count; ++p) {
     const SolverContact& c = contacts[manifold.first + p];
-    const SolverBody& a = bodies[c.a];
-    const SolverBody& b = bodies[c.b];
-    const double v_n = c.n.dot(a.v - b.v) + c.cross_a.col(0).dot(a.w) - c.cross_b.col(0).dot(b.w);
-    residual[p] = c.target_speed - v_n;
-    at_rest = at_rest && std::abs(c.normal_mass * residual[p]) <= kFaceAtRest * c.normal_impulse;
+    residual[p] = c.target_speed - normalSpeed(c, bodies[c.a], bodies[c.b]);
+    moving = moving || std::abs(c.normal_mass * residual[p]) > kFaceAtRest * c.normal_impulse;
   }
-  if (at_rest) return false;
+  if (!moving) return false;
   if (!manifold.inverted) {
-    const SolverContact& c = contacts[manifold.first];
-    manifold.joint = jointNormalInverse(&c, manifold.count, c.a == kEnvironment ? 0.0 : bodies[c.a].inverse_mass,
-                                        c.b == kEnvironment ? 0.0 : bodies[c.b].inverse_mass, manifold.inverse);
+    const SolverContact& c = contacts[manifold.first];  // the environment's entry has zero inverse mass
+    manifold.joint = jointNormalInverse(&c, manifold.count, bodies[c.a].inverse_mass, bodies[c.b].inverse_mass,
+                                        manifold.inverse);
     manifold.inverted = true;
     if (!manifold.joint) return false;
   }

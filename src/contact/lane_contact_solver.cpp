@@ -4,7 +4,6 @@
 #include <type_traits>
 
 #include "contact_lanes.hpp"
-#include "joint_normals.hpp"
 #include "friction_disc.hpp"
 
 namespace rigid_body {

@@ -16,11 +16,8 @@ void ManifoldColouring::colour(const std::vector<SolverContact>& contacts, const
   for (std::size_t i = 0; i < count; ++i) {
     for (std::size_t k = islands[i].contact_begin; k < islands[i].contact_end;) {
       const SolverContact& c = contacts[k];
-      Manifold m{k, 0, static_cast<std::uint32_t>(i)};
-      while (k < islands[i].contact_end && m.count < kMaxManifoldPoints && contacts[k].a == c.a &&
-             contacts[k].b == c.b) {
-        ++m.count, ++k;
-      }
+      const Manifold m{k, manifoldLength(contacts, k, islands[i].contact_end), static_cast<std::uint32_t>(i)};
+      k += m.count;
       // The environment holds no colour: it is never written, so any number of manifolds may touch it.
       const std::uint64_t a_used = c.a == kEnvironment ? 0 : used_[c.a];
       const std::uint64_t b_used = c.b == kEnvironment ? 0 : used_[c.b];

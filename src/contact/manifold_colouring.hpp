@@ -31,6 +31,17 @@ struct Manifold {
 
 constexpr std::size_t kMaxManifoldPoints = 4;
 
+/// How many contacts form the manifold that starts at contacts[first]: those that follow it before `end`
+/// between the same two bodies, up to kMaxManifoldPoints.
+inline std::uint32_t manifoldLength(const std::vector<SolverContact>& contacts, std::size_t first, std::size_t end) {
+  std::uint32_t count = 0;
+  while (first + count < end && count < kMaxManifoldPoints && contacts[first + count].a == contacts[first].a &&
+         contacts[first + count].b == contacts[first].b) {
+    ++count;
+  }
+  return count;
+}
+
 class ManifoldColouring {
  public:
   /// Colours with a body mask; manifolds that find none free go to the overflow colour kColours.
