@@ -50,6 +50,8 @@ bool solveRestingContacts(std::vector<SolverContact>& contacts, std::vector<Solv
   LaneContactSolver lanes;
   char converged = 0;
   lanes.solve(contacts, bodies, settings.options, &range, 1, &converged, settings.lanes);
+  StickingScratch scratch;
+  if (!converged && solveStickingIsland(contacts, bodies, range, settings.options.dt, scratch)) converged = 1;
   finishRestingContacts(contacts, bodies, settings, range, lift_share);
   return converged != 0;
 }
@@ -163,6 +165,7 @@ void SolverIslands::solve(std::vector<SolverContact>& contacts, std::vector<Solv
   ranges_.resize(count);
   for (std::size_t island = 0; island < count; ++island) ranges_[island] = rangeOf(island);
   if (block_solvers_.size() < block_end_.size()) block_solvers_.resize(block_end_.size());
+  if (block_sticking_.size() < block_end_.size()) block_sticking_.resize(block_end_.size());
   const bool large_prepared = prepareLargeIslands(contacts, bodies, shared.options, pool, hooks);
   // A block's islands are filled, prepared, swept together in the lanes, and finished one by one.
   forEachBlock(pool, [&](std::size_t block, std::size_t begin, std::size_t end) {
@@ -177,6 +180,11 @@ void SolverIslands::solve(std::vector<SolverContact>& contacts, std::vector<Solv
     }
     block_solvers_[block].solve(contacts, bodies, shared.options, ranges_.data() + begin, end - begin,
                                 island_converged_.data() + begin, shared.lanes);
+    for (std::size_t island = begin; island < end; ++island) {  // what the sweeps left unconverged, at once
+      if (island_converged_[island]) continue;
+      const bool solved = solveStickingIsland(contacts, bodies, ranges_[island], shared.options.dt, block_sticking_[block]);
+      island_converged_[island] = solved ? 1 : 0;
+    }
     for (std::size_t island = begin; island < end; ++island) {
       finishRestingContacts(contacts, bodies, shared, ranges_[island], lift_share_);
     }

@@ -16,6 +16,7 @@
 
 #include "contact_solver.hpp"
 #include "lane_contact_solver.hpp"
+#include "sticking_solve.hpp"
 #include "rigid_body_sim/thread_pool.hpp"
 
 namespace rigid_body {
@@ -34,9 +35,10 @@ struct RestingSolveSettings {
 };
 
 /// The impulses of the resting solve on `range`, with the moves they make: the velocity sweeps (in lanes,
-/// lane_contact_solver.hpp), the move by move_weight Δv, the limit on how far that lifts a contact made
+/// lane_contact_solver.hpp) and, where they did not converge, the island solved at once if it sticks
+/// (sticking_solve.hpp), the move by move_weight Δv, the limit on how far that lifts a contact made
 /// within the step, then the position projection. `lift_share` has an entry per body (scratch; only the
-/// range's are written). Returns whether the velocity sweeps converged.
+/// range's are written). Returns whether the velocity solve converged (in its sweeps or at once).
 bool solveRestingContacts(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies,
                           const RestingSolveSettings& settings, const SolveRange& range,
                           std::vector<double>& lift_share);
@@ -87,7 +89,8 @@ class SolverIslands {
              const std::vector<std::size_t>& body_start, const RestingSolveSettings& settings, ThreadPool* pool,
              const Hooks& hooks = {});
 
-  /// Per contact of the last solve: whether its island's velocity solve converged.
+  /// Per contact of the last solve: whether its island's velocity solve converged (in its sweeps, or solved
+  /// at once as if it stuck).
   bool converged(std::size_t contact) const { return island_converged_[island_of_contact_[contact]] != 0; }
 
  private:
@@ -113,6 +116,7 @@ class SolverIslands {
   std::vector<std::size_t> block_end_;          // islands [block_end_[b−1], block_end_[b]) form block b (group())
   std::vector<SolveRange> ranges_;              // per island
   std::vector<LaneContactSolver> block_solvers_;  // per block: its lanes' buffers, kept between steps
+  std::vector<StickingScratch> block_sticking_;    // per block: its direct solves' lists
   std::vector<double> lift_share_;              // per solver body
   std::vector<std::pair<std::size_t, std::size_t>> large_runs_;  // scratch: runs of the large islands' contacts
 };

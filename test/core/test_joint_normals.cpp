@@ -12,6 +12,7 @@
 
 #include <Eigen/Geometry>
 
+#include "random_solver_bodies.hpp"
 #include "../../src/contact/joint_normals.hpp"
 
 using namespace rigid_body;
@@ -21,21 +22,8 @@ namespace {
 
 using Jacobian = Eigen::Matrix<double, 1, 12>;
 
-// A random unit vector and a random rotation, for poses no axis favours.
-Eigen::Vector3d randomUnit(std::mt19937& random) {
-  std::normal_distribution<double> normal(0.0, 1.0);
-  return Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized();
-}
-
-SolverBody randomBody(std::mt19937& random) {
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  SolverBody body;
-  body.inverse_mass = 1.0 / (0.1 + 10.0 * unit(random));
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(6.3 * unit(random), randomUnit(random)).toRotationMatrix();
-  const Eigen::Vector3d moments(0.01 + unit(random), 0.01 + unit(random), 0.01 + unit(random));
-  body.inverse_inertia_W = R * moments.cwiseInverse().asDiagonal() * R.transpose();
-  return body;
-}
+using test::randomBody;
+using test::randomUnit;
 
 // `count` points of a face with normal n (from b towards a) about a centre c, their arms from a's centre
 // xa and b's centre xb, and each one's Jacobian row J_i = (n, r_a × n, −n, −r_b × n).

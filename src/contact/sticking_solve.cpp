@@ -1,0 +1,180 @@
+#include "sticking_solve.hpp"
+
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace rigid_body {
+namespace contact {
+
+namespace {
+
+constexpr std::size_t kNoRow = std::numeric_limits<std::size_t>::max();
+// K is factored as K + ε k̄ 1 (k̄ the mean of K's diagonal): positive definite, and its solution tends to the
+// least-norm one as ε → 0. The refinements x ← x + (K + ε k̄ 1)⁻¹ (r − K x) take the error on the range of K down
+// by ε k̄/(μ + ε k̄) each (μ its eigenvalues there), to rounding; along the null space they add nothing but
+// rounding over ε k̄.
+constexpr double kRegularisation = 1e-9;
+constexpr int kRefinements = 3;
+// A face the solve holds exactly stays at the depth it had, which may be zero: and a box face resting at zero
+// depth loses its points as soon as rounding opens a gap (the box-box narrow phase reports only overlap), falls
+// for a step and lands with a kick. So a point shallower than half this depth is sunk to it within the step:
+// far below anything a trajectory shows, far above the rounding of a position.
+constexpr double kRestingDepth = 1e-9;
+// Islands of more points are left to the sweeps: the factorisation's cost grows faster than the island
+// (the pyramid of 20 rows, 1 600 points, would pay it in every step).
+constexpr std::size_t kMostPoints = 256;
+
+const Eigen::Vector3d& direction(const SolverContact& c, std::size_t d) { return d == 0 ? c.n : d == 1 ? c.t1 : c.t2; }
+
+// J_row V: the contact's relative velocity along direction d.
+double rowSpeed(const SolverContact& c, std::size_t d, const SolverBody& a, const SolverBody& b) {
+  return direction(c, d).dot(a.v - b.v) + c.cross_a.col(static_cast<Eigen::Index>(d)).dot(a.w) -
+         c.cross_b.col(static_cast<Eigen::Index>(d)).dot(b.w);
+}
+
+// The rows: each point's normal, and its tangents where it has friction (without, they keep their zero).
+std::size_t numberRows(const std::vector<SolverContact>& contacts, const SolveRange& range, StickingScratch& s) {
+  const std::size_t points = range.contact_end - range.contact_begin;
+  s.row_of.assign(3 * points, kNoRow);
+  s.contact.clear();
+  for (std::size_t k = 0; k < points; ++k) {
+    for (std::size_t d = 0; d < 3; ++d) {
+      if (d > 0 && !(contacts[range.contact_begin + k].friction > 0.0)) continue;
+      s.row_of[3 * k + d] = s.contact.size();
+      s.contact.push_back(3 * k + d);
+    }
+  }
+  return s.contact.size();
+}
+
+// K's lower triangle, body by body: rows i (point p, direction u) and j (point q, direction v) that move one
+// body B couple by σ_p σ_q (d_u·d_v / M_B + (r_p × d_u)·I_B⁻¹(r_q × d_v)), σ = +1 on a contact's side a, −1 on b.
+void assembleCoupling(const std::vector<SolverContact>& contacts, const std::vector<SolverBody>& bodies,
+                      const SolveRange& range, StickingScratch& s, Eigen::VectorXd& diagonal) {
+  const std::size_t points = range.contact_end - range.contact_begin;
+  s.rows_on.resize(range.body_end - range.body_begin);
+  for (auto& list : s.rows_on) list.clear();
+  for (std::size_t k = 0; k < points; ++k) {
+    const SolverContact& c = contacts[range.contact_begin + k];
+    if (c.a != kEnvironment) s.rows_on[c.a - range.body_begin].push_back(2 * k);
+    if (c.b != kEnvironment) s.rows_on[c.b - range.body_begin].push_back(2 * k + 1);
+  }
+  s.entries.clear();
+  for (std::size_t body = 0; body < s.rows_on.size(); ++body) {
+    const double inverse_mass = bodies[range.body_begin + body].inverse_mass;
+    for (const std::size_t first : s.rows_on[body]) {
+      const SolverContact& p = contacts[range.contact_begin + first / 2];
+      const bool p_on_a = first % 2 == 0;
+      for (const std::size_t second : s.rows_on[body]) {
+        const SolverContact& q = contacts[range.contact_begin + second / 2];
+        const bool q_on_a = second % 2 == 0;
+        const double sign = p_on_a == q_on_a ? 1.0 : -1.0;
+        const Eigen::Matrix3d& cross = p_on_a ? p.cross_a : p.cross_b;
+        const Eigen::Matrix3d& response = q_on_a ? q.response_a : q.response_b;
+        for (std::size_t u = 0; u < 3; ++u) {
+          const std::size_t i = s.row_of[3 * (first / 2) + u];
+          if (i == kNoRow) continue;
+          for (std::size_t v = 0; v < 3; ++v) {
+            const std::size_t j = s.row_of[3 * (second / 2) + v];
+            if (j == kNoRow || j > i) continue;
+            const double value = sign * (inverse_mass * direction(p, u).dot(direction(q, v)) +
+                                         cross.col(static_cast<Eigen::Index>(u)).dot(response.col(static_cast<Eigen::Index>(v))));
+            s.entries.emplace_back(static_cast<int>(i), static_cast<int>(j), value);
+            if (i == j) diagonal[static_cast<Eigen::Index>(i)] += value;
+          }
+        }
+      }
+    }
+  }
+}
+
+// What each row aims at: the normal's target speed (a bounce, or a speculative point's closing), with a
+// shallow point (less than half kRestingDepth deep) also sunk to kRestingDepth within the step; no slip.
+void rowResiduals(const std::vector<SolverContact>& contacts, const std::vector<SolverBody>& bodies,
+                  const SolveRange& range, double dt, const StickingScratch& s, Eigen::VectorXd& residual,
+                  Eigen::VectorXd& now) {
+  for (std::size_t i = 0; i < s.contact.size(); ++i) {
+    const std::size_t k = s.contact[i] / 3, d = s.contact[i] % 3;
+    const SolverContact& c = contacts[range.contact_begin + k];
+    double target = d == 0 ? c.target_speed : 0.0;
+    if (d == 0 && target <= 0.0 && dt > 0.0 && c.separation > -0.5 * kRestingDepth) {
+      target = std::min(target, -(c.separation + kRestingDepth) / dt);
+    }
+    const auto row = static_cast<Eigen::Index>(i);
+    residual[row] = target - rowSpeed(c, d, bodies[c.a], bodies[c.b]);
+    now[row] = d == 0 ? c.normal_impulse : c.friction_impulse[static_cast<Eigen::Index>(d - 1)];
+  }
+}
+
+// Whether the impulses `next` (rows as numbered) keep every point pushing (at or above its floor) and within
+// its friction disc.
+bool admissible(const std::vector<SolverContact>& contacts, const SolveRange& range, const StickingScratch& s,
+                const Eigen::VectorXd& next) {
+  const auto value = [&](std::size_t k, std::size_t d, double kept) {
+    const std::size_t row = s.row_of[3 * k + d];
+    return row == kNoRow ? kept : next[static_cast<Eigen::Index>(row)];
+  };
+  for (std::size_t k = 0; k < range.contact_end - range.contact_begin; ++k) {
+    const SolverContact& c = contacts[range.contact_begin + k];
+    const double normal = value(k, 0, c.normal_impulse);
+    const Eigen::Vector2d friction(value(k, 1, c.friction_impulse.x()), value(k, 2, c.friction_impulse.y()));
+    const double limit = c.friction * normal;
+    if (!(normal >= c.normal_floor) || !(friction.squaredNorm() <= limit * limit)) return false;
+  }
+  return true;
+}
+
+// The impulses become `next`, and the bodies' velocities change by what they add.
+void applyImpulses(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range,
+                   const StickingScratch& s, const Eigen::VectorXd& next) {
+  for (std::size_t k = 0; k < range.contact_end - range.contact_begin; ++k) {
+    SolverContact& c = contacts[range.contact_begin + k];
+    const Eigen::Vector3d before(c.normal_impulse, c.friction_impulse.x(), c.friction_impulse.y());
+    Eigen::Vector3d after = before;
+    for (std::size_t d = 0; d < 3; ++d) {
+      const std::size_t row = s.row_of[3 * k + d];
+      if (row != kNoRow) after[static_cast<Eigen::Index>(d)] = next[static_cast<Eigen::Index>(row)];
+    }
+    const Eigen::Vector3d change = after - before;
+    c.normal_impulse = after.x();
+    c.friction_impulse = after.tail<2>();
+    const Eigen::Vector3d linear = change.x() * c.n + change.y() * c.t1 + change.z() * c.t2;
+    if (c.a != kEnvironment) bodies[c.a].v += bodies[c.a].inverse_mass * linear, bodies[c.a].w += c.response_a * change;
+    if (c.b != kEnvironment) bodies[c.b].v -= bodies[c.b].inverse_mass * linear, bodies[c.b].w -= c.response_b * change;
+  }
+}
+
+}  // namespace
+
+bool solveStickingIsland(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range,
+                         double dt, StickingScratch& scratch) {
+  if (range.contact_end - range.contact_begin > kMostPoints) return false;
+  const std::size_t rows = numberRows(contacts, range, scratch);
+  if (rows == 0) return false;
+  const auto size = static_cast<Eigen::Index>(rows);
+  Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(size), residual(size), now(size);
+  assembleCoupling(contacts, bodies, range, scratch, diagonal);
+  Eigen::SparseMatrix<double> K(size, size), regular(size, size);
+  K.setFromTriplets(scratch.entries.begin(), scratch.entries.end());
+  const double shift = kRegularisation * diagonal.mean();  // the same on every row: the least norm is Euclidean
+  for (Eigen::Index i = 0; i < size; ++i) scratch.entries.emplace_back(i, i, shift);
+  regular.setFromTriplets(scratch.entries.begin(), scratch.entries.end());
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> factor(regular);
+  if (factor.info() != Eigen::Success) return false;
+  rowResiduals(contacts, bodies, range, dt, scratch, residual, now);
+  // The impulses themselves, not their change, are solved for: K λ = K λ₀ + (target − v). The least-norm λ
+  // drops whatever the sweeps left in K's null space (a face's corners pushing against each other), and
+  // spreads a face's load as evenly as its balance allows.
+  const auto coupling = K.selfadjointView<Eigen::Lower>();
+  const Eigen::VectorXd wanted = coupling * now + residual;
+  Eigen::VectorXd next = factor.solve(wanted);
+  for (int refinement = 0; refinement < kRefinements; ++refinement) next += factor.solve(wanted - coupling * next);
+  if (!next.allFinite() || !admissible(contacts, range, scratch, next)) return false;
+  applyImpulses(contacts, bodies, range, scratch, next);
+  return true;
+}
+
+}  // namespace contact
+}  // namespace rigid_body

@@ -1,0 +1,33 @@
+// An island solved at once as if all its points stuck (docs/contact.md, "An island that sticks, solved at
+// once"): where the sweeps leave an island unconverged, its velocity rows are solved directly, and the
+// result is kept if every point then pushes and holds within its friction disc. Internal to the contact
+// solver.
+#pragma once
+
+#include <Eigen/SparseCore>
+#include <cstddef>
+#include <vector>
+
+#include "contact_solver.hpp"
+
+namespace rigid_body {
+namespace contact {
+
+/// What a direct solve keeps between calls (its lists and matrices), so that a thread's solves reuse them.
+struct StickingScratch {
+  std::vector<std::size_t> row_of;   // per contact direction (3 k + d): its row, or kNoRow
+  std::vector<std::size_t> contact;  // per row: contact index (3 k + d)
+  std::vector<Eigen::Triplet<double>> entries;
+  std::vector<std::vector<std::size_t>> rows_on;  // per body of the range: the rows (3 k + d) that touch it
+};
+
+/// Solves the rows of `range` (each point's normal, and its two tangents where it has friction) as
+/// equalities, K Δλ = target − v with K = J M⁻¹ Jᵀ (every point pushing and sticking), and applies Δλ if
+/// every point's normal impulse stays at or above its floor and its friction within μ times it. True if
+/// applied. K is singular (a face of four points has twelve rows and six degrees of freedom): the solve is
+/// the least-norm one, docs/references.md, "An island that sticks".
+bool solveStickingIsland(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range,
+                         double dt, StickingScratch& scratch);
+
+}  // namespace contact
+}  // namespace rigid_body

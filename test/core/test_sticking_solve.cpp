@@ -1,0 +1,187 @@
+// An island solved at once as if it stuck (src/contact/sticking_solve.hpp). The result is checked against
+// K built here afresh from each point's full Jacobian rows over all the island's bodies (not from the
+// solver's products) and its pseudo-inverse: a missing coupling between two faces of one body, a wrong sign
+// on a contact's side b, a solve for the change (which keeps the corners' internal pushing) instead of the
+// impulses, or a regularisation left unrefined fails it. An island that would have to pull or slide is
+// refused and left as it was; a face at zero depth is sunk to the resting depth.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <Eigen/QR>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "random_solver_bodies.hpp"
+#include "../../src/contact/sticking_solve.hpp"
+
+using namespace rigid_body;
+using namespace rigid_body::contact;
+
+namespace {
+
+using test::randomBody;
+using test::randomUnit;
+
+// A chain: the environment (0) under body 1 under body 2 under body 3, each pair touching on a face of
+// `counts[f]` points about a point between their centres, with a random normal per face.
+struct Island {
+  std::vector<SolverBody> bodies;
+  std::vector<SolverContact> contacts;
+};
+Island chain(std::mt19937& random, const std::vector<std::size_t>& counts, double friction) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Island island;
+  island.bodies.push_back(SolverBody());  // the environment: no inverse mass or inertia
+  std::vector<Eigen::Vector3d> centres{Eigen::Vector3d::Zero()};
+  for (std::size_t f = 0; f < counts.size(); ++f) {
+    island.bodies.push_back(randomBody(random));
+    centres.push_back(centres.back() + Eigen::Vector3d(0.0, 0.0, 0.5) + 0.1 * randomUnit(random));
+  }
+  for (std::size_t f = 0; f < counts.size(); ++f) {
+    const std::size_t a = f + 1, b = f;
+    const Eigen::Vector3d n = (Eigen::Vector3d::UnitZ() + 0.3 * randomUnit(random)).normalized();
+    const Eigen::Vector3d t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+    const Eigen::Vector3d middle = 0.5 * (centres[a] + centres[b]);
+    const double hx = 0.05 + 0.2 * unit(random), hy = 0.05 + 0.2 * unit(random);
+    const Eigen::Vector2d corners[4] = {{-hx, -hy}, {hx, -hy}, {hx, hy}, {-hx, hy}};
+    for (std::size_t i = 0; i < counts[f]; ++i) {
+      const Eigen::Vector3d p = middle + corners[i].x() * t1 + corners[i].y() * t2;
+      SolverContact c;
+      c.a = a, c.b = b == 0 ? kEnvironment : b;
+      c.r_a = p - centres[a];
+      if (b != 0) c.r_b = p - centres[b];
+      c.n = n, c.t1 = t1, c.t2 = t2;
+      c.friction = friction;
+      c.separation = -1e-5;  // deeper than the resting depth: the target stays zero
+      c.sustained = true;
+      island.contacts.push_back(c);
+    }
+  }
+  prepareContactRows(island.contacts, island.bodies, SolveOptions(), 0, island.contacts.size());
+  return island;
+}
+
+// Each point's three rows (n, t1, t2) over all bodies' velocities (6 per body, the environment's too).
+Eigen::MatrixXd jacobian(const Island& island) {
+  const auto columns = static_cast<Eigen::Index>(6 * island.bodies.size());
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(3 * island.contacts.size()), columns);
+  for (std::size_t k = 0; k < island.contacts.size(); ++k) {
+    const SolverContact& c = island.contacts[k];
+    const Eigen::Vector3d d[3] = {c.n, c.t1, c.t2};
+    for (int j = 0; j < 3; ++j) {
+      const auto row = static_cast<Eigen::Index>(3 * k) + j;
+      J.block<1, 3>(row, static_cast<Eigen::Index>(6 * c.a)) = d[j].transpose();
+      J.block<1, 3>(row, static_cast<Eigen::Index>(6 * c.a + 3)) = c.r_a.cross(d[j]).transpose();
+      if (c.b == kEnvironment) continue;
+      J.block<1, 3>(row, static_cast<Eigen::Index>(6 * c.b)) = -d[j].transpose();
+      J.block<1, 3>(row, static_cast<Eigen::Index>(6 * c.b + 3)) = -c.r_b.cross(d[j]).transpose();
+    }
+  }
+  return J;
+}
+
+Eigen::MatrixXd inverseMass(const Island& island) {
+  const auto size = static_cast<Eigen::Index>(6 * island.bodies.size());
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(size, size);
+  for (std::size_t s = 0; s < island.bodies.size(); ++s) {
+    const auto at = static_cast<Eigen::Index>(6 * s);
+    M.block<3, 3>(at, at) = island.bodies[s].inverse_mass * Eigen::Matrix3d::Identity();
+    M.block<3, 3>(at + 3, at + 3) = island.bodies[s].inverse_inertia_W;
+  }
+  return M;
+}
+
+Eigen::VectorXd velocities(const Island& island) {
+  Eigen::VectorXd V(static_cast<Eigen::Index>(6 * island.bodies.size()));
+  for (std::size_t s = 0; s < island.bodies.size(); ++s) {
+    V.segment<3>(static_cast<Eigen::Index>(6 * s)) = island.bodies[s].v;
+    V.segment<3>(static_cast<Eigen::Index>(6 * s + 3)) = island.bodies[s].w;
+  }
+  return V;
+}
+
+Eigen::VectorXd impulses(const Island& island) {
+  Eigen::VectorXd lambda(static_cast<Eigen::Index>(3 * island.contacts.size()));
+  for (std::size_t k = 0; k < island.contacts.size(); ++k) {
+    const SolverContact& c = island.contacts[k];
+    lambda.segment<3>(static_cast<Eigen::Index>(3 * k)) << c.normal_impulse, c.friction_impulse;
+  }
+  return lambda;
+}
+
+}  // namespace
+
+TEST(StickingSolve, StopsEveryRowWithTheLeastNormImpulses) {
+  std::mt19937 random(17);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    Island island = chain(random, {4, 4, 3, 4}, 1e6);  // a disc no sticking impulse leaves
+    const Eigen::MatrixXd J = jacobian(island), K = J * inverseMass(island) * J.transpose();
+    // Warm impulses that press hard, with a random part K does not see (a face's corners pushing against
+    // each other), and velocities that a rigid island would not have.
+    Eigen::VectorXd seen = Eigen::VectorXd::Zero(J.rows());
+    for (Eigen::Index r = 0; r < seen.size(); r += 3) seen[r] = 10.0;
+    const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> pseudo(K);
+    Eigen::VectorXd unseen = Eigen::VectorXd::NullaryExpr(J.rows(), [&] { return unit(random); });
+    unseen -= pseudo.pseudoInverse() * (K * unseen);
+    const Eigen::VectorXd warm = seen + unseen;
+    for (std::size_t k = 0; k < island.contacts.size(); ++k) {
+      island.contacts[k].normal_impulse = warm[static_cast<Eigen::Index>(3 * k)];
+      island.contacts[k].friction_impulse = warm.segment<2>(static_cast<Eigen::Index>(3 * k + 1));
+    }
+    for (std::size_t s = 1; s < island.bodies.size(); ++s) {
+      island.bodies[s].v = 0.1 * randomUnit(random), island.bodies[s].w = 0.1 * randomUnit(random);
+    }
+    const Eigen::VectorXd before = velocities(island);
+    StickingScratch scratch;
+    ASSERT_TRUE(solveStickingIsland(island.contacts, island.bodies, SolveRange::all(island.contacts.size(), island.bodies.size()),
+                                    1e-3, scratch)) << trial;
+    // Every row's velocity is zero, the velocities are the ones the impulses' change makes, and the
+    // impulses are K⁺ (K λ₀ − J V₀): the least-norm ones that stop the island.
+    const Eigen::VectorXd after = velocities(island), lambda = impulses(island);
+    EXPECT_LE((J * after).norm(), 1e-10 * (1.0 + (J * before).norm())) << trial;
+    EXPECT_LE((after - before - inverseMass(island) * J.transpose() * (lambda - warm)).norm(), 1e-10 * before.norm())
+        << trial;
+    // To what the shift leaves: rounding over it (1e-16 / 1e-9) along K's null space in each of the four
+    // solves, times the spread of K's eigenvalues over the island's mass ratios (up to 100). A solve for the
+    // change keeps the corners' random pushing (about 0.1 of the impulses here); a shift weighted by K's
+    // diagonal gives a weighted least norm (0.02 to 0.2 off).
+    const Eigen::VectorXd expected = pseudo.solve(K * warm - J * before);
+    EXPECT_LE((lambda - expected).norm(), 1e-5 * expected.norm()) << trial;
+  }
+}
+
+TEST(StickingSolve, AnIslandThatWouldPullOrSlideIsLeftAsItWas) {
+  std::mt19937 random(23);
+  for (const bool pulls : {true, false}) {
+    // Pulling: the top body leaves upward faster than its small warm impulses hold it. Sliding: it moves
+    // sideways under a friction coefficient of 0.01.
+    Island island = chain(random, {4, 4}, pulls ? 1e6 : 0.01);
+    for (SolverContact& c : island.contacts) c.normal_impulse = 0.01;
+    island.bodies[2].v = pulls ? Eigen::Vector3d(0.0, 0.0, 5.0) : Eigen::Vector3d(2.0, 0.0, 0.0);
+    const Island before = island;
+    StickingScratch scratch;
+    EXPECT_FALSE(solveStickingIsland(island.contacts, island.bodies, SolveRange::all(island.contacts.size(), 3), 1e-3,
+                                     scratch)) << pulls;
+    EXPECT_EQ(impulses(island), impulses(before)) << pulls;
+    EXPECT_EQ(velocities(island), velocities(before)) << pulls;
+  }
+}
+
+// A face that stopped at zero depth would lose its points at the first gap rounding opens: it is sunk to the
+// resting depth (1e-9 m) within the step. A face already deeper than half of it is held where it is.
+TEST(StickingSolve, AFaceAtZeroDepthSinksToTheRestingDepth) {
+  for (const double separation : {0.0, -1e-6}) {
+    std::mt19937 random(31);
+    Island island = chain(random, {4}, 1e6);
+    for (SolverContact& c : island.contacts) c.separation = separation, c.normal_impulse = 1.0;
+    const double dt = 1e-3;
+    StickingScratch scratch;
+    ASSERT_TRUE(solveStickingIsland(island.contacts, island.bodies, SolveRange::all(4, 2), dt, scratch));
+    const double expected = separation == 0.0 ? -1e-9 / dt : 0.0;
+    for (const SolverContact& c : island.contacts) {
+      EXPECT_NEAR(normalSpeed(c, island.bodies[c.a], island.bodies[c.b]), expected, 1e-12) << separation;
+    }
+  }
+}
