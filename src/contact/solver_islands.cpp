@@ -41,6 +41,13 @@ void limitLiftOfNewContacts(const std::vector<SolverContact>& contacts, std::vec
   }
 }
 
+// A point slipping faster than this slides, and its island is not solved at once as if it stuck: a tenth of
+// the slop per step, the bound below which a point may anchor (docs/contact.md, step 6).
+double slidingSpeed(const RestingSolveSettings& settings) {
+  return settings.options.dt > 0.0 ? 0.1 * settings.penetration_slop / settings.options.dt
+                                   : std::numeric_limits<double>::infinity();
+}
+
 }  // namespace
 
 bool solveRestingContacts(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies,
@@ -51,7 +58,8 @@ bool solveRestingContacts(std::vector<SolverContact>& contacts, std::vector<Solv
   char converged = 0;
   lanes.solve(contacts, bodies, settings.options, &range, 1, &converged, settings.lanes);
   StickingScratch scratch;
-  if (!converged && solveStickingIsland(contacts, bodies, range, settings.options.dt, scratch)) converged = 1;
+  const double sliding = slidingSpeed(settings);
+  if (!converged && solveStickingIsland(contacts, bodies, range, settings.options.dt, sliding, scratch)) converged = 1;
   finishRestingContacts(contacts, bodies, settings, range, lift_share);
   return converged != 0;
 }
@@ -182,7 +190,8 @@ void SolverIslands::solve(std::vector<SolverContact>& contacts, std::vector<Solv
                                 island_converged_.data() + begin, shared.lanes);
     for (std::size_t island = begin; island < end; ++island) {  // what the sweeps left unconverged, at once
       if (island_converged_[island]) continue;
-      const bool solved = solveStickingIsland(contacts, bodies, ranges_[island], shared.options.dt, block_sticking_[block]);
+      const bool solved = solveStickingIsland(contacts, bodies, ranges_[island], shared.options.dt,
+                                              slidingSpeed(shared), block_sticking_[block]);
       island_converged_[island] = solved ? 1 : 0;
     }
     for (std::size_t island = begin; island < end; ++island) {

@@ -1,5 +1,6 @@
 #include "sticking_solve.hpp"
 
+#include <Eigen/Cholesky>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
@@ -25,6 +26,8 @@ constexpr double kRestingDepth = 1e-9;
 // Islands of more points are left to the sweeps: the factorisation's cost grows faster than the island
 // (the pyramid of 20 rows, 1 600 points, would pay it in every step).
 constexpr std::size_t kMostPoints = 256;
+// Islands of up to this many rows are solved in a dense matrix.
+constexpr std::size_t kMostDenseRows = 48;
 
 const Eigen::Vector3d& direction(const SolverContact& c, std::size_t d) { return d == 0 ? c.n : d == 1 ? c.t1 : c.t2; }
 
@@ -79,8 +82,9 @@ void assembleCoupling(const std::vector<SolverContact>& contacts, const std::vec
           for (std::size_t v = 0; v < 3; ++v) {
             const std::size_t j = s.row_of[3 * (second / 2) + v];
             if (j == kNoRow || j > i) continue;
-            const double value = sign * (inverse_mass * direction(p, u).dot(direction(q, v)) +
-                                         cross.col(static_cast<Eigen::Index>(u)).dot(response.col(static_cast<Eigen::Index>(v))));
+            const auto cu = static_cast<Eigen::Index>(u), cv = static_cast<Eigen::Index>(v);
+            const double value =
+                sign * (inverse_mass * direction(p, u).dot(direction(q, v)) + cross.col(cu).dot(response.col(cv)));
             s.entries.emplace_back(static_cast<int>(i), static_cast<int>(j), value);
             if (i == j) diagonal[static_cast<Eigen::Index>(i)] += value;
           }
@@ -146,32 +150,70 @@ void applyImpulses(std::vector<SolverContact>& contacts, std::vector<SolverBody>
   }
 }
 
+// Whether some point slipped, in the sweeps' last friction update, faster than `sliding_speed`: it slides,
+// and the island would not stick (a pile while it falls: trying it there cost a third again of the pile's
+// step, and was refused).
+bool sliding(const std::vector<SolverContact>& contacts, const SolveRange& range, double sliding_speed) {
+  for (std::size_t k = range.contact_begin; k < range.contact_end; ++k) {
+    if (contacts[k].slip_squared > sliding_speed * sliding_speed) return true;
+  }
+  return false;
+}
+
+// The impulses themselves, not their change, are solved for: K λ = K λ₀ + (target − v) =: b. The least-norm λ
+// drops whatever the sweeps left in K's null space (a face's corners pushing against each other), and
+// spreads a face's load as evenly as its balance allows. K + shift 1 factored once, then refined (above).
+template <class Factor, class Coupling>
+void refine(const Factor& factor, const Coupling& K, const Eigen::VectorXd& now, const Eigen::VectorXd& residual,
+            Eigen::VectorXd& next) {
+  const Eigen::VectorXd wanted = K * now + residual;
+  next = factor.solve(wanted);
+  for (int refinement = 0; refinement < kRefinements; ++refinement) next += factor.solve(wanted - K * next);
+}
+
+// A small island in a dense matrix (a body resting alone on two or three points needs no sparse machinery),
+// a larger one in a sparse one; K's lower triangle given as triplets, summed where they repeat.
+bool leastNormDense(const std::vector<Eigen::Triplet<double>>& entries, double shift, const Eigen::VectorXd& now,
+                    const Eigen::VectorXd& residual, Eigen::VectorXd& next) {
+  const Eigen::Index size = now.size();
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(size, size);
+  for (const Eigen::Triplet<double>& e : entries) K(e.row(), e.col()) += e.value();
+  K.triangularView<Eigen::StrictlyUpper>() = K.transpose();
+  const Eigen::LDLT<Eigen::MatrixXd> factor(K + shift * Eigen::MatrixXd::Identity(size, size));
+  if (factor.info() != Eigen::Success) return false;
+  refine(factor, K, now, residual, next);
+  return true;
+}
+bool leastNormSparse(std::vector<Eigen::Triplet<double>>& entries, double shift, const Eigen::VectorXd& now,
+                     const Eigen::VectorXd& residual, Eigen::VectorXd& next) {
+  const Eigen::Index size = now.size();
+  Eigen::SparseMatrix<double> K(size, size), regular(size, size);
+  K.setFromTriplets(entries.begin(), entries.end());
+  for (Eigen::Index i = 0; i < size; ++i) entries.emplace_back(i, i, shift);
+  regular.setFromTriplets(entries.begin(), entries.end());
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> factor(regular);
+  if (factor.info() != Eigen::Success) return false;
+  refine(factor, K.selfadjointView<Eigen::Lower>(), now, residual, next);
+  return true;
+}
+
 }  // namespace
 
 bool solveStickingIsland(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range,
-                         double dt, StickingScratch& scratch) {
+                         double dt, double sliding_speed, StickingScratch& scratch) {
   if (range.contact_end - range.contact_begin > kMostPoints) return false;
+  if (sliding(contacts, range, sliding_speed)) return false;
   const std::size_t rows = numberRows(contacts, range, scratch);
   if (rows == 0) return false;
   const auto size = static_cast<Eigen::Index>(rows);
   Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(size), residual(size), now(size);
   assembleCoupling(contacts, bodies, range, scratch, diagonal);
-  Eigen::SparseMatrix<double> K(size, size), regular(size, size);
-  K.setFromTriplets(scratch.entries.begin(), scratch.entries.end());
-  const double shift = kRegularisation * diagonal.mean();  // the same on every row: the least norm is Euclidean
-  for (Eigen::Index i = 0; i < size; ++i) scratch.entries.emplace_back(i, i, shift);
-  regular.setFromTriplets(scratch.entries.begin(), scratch.entries.end());
-  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> factor(regular);
-  if (factor.info() != Eigen::Success) return false;
   rowResiduals(contacts, bodies, range, dt, scratch, residual, now);
-  // The impulses themselves, not their change, are solved for: K λ = K λ₀ + (target − v). The least-norm λ
-  // drops whatever the sweeps left in K's null space (a face's corners pushing against each other), and
-  // spreads a face's load as evenly as its balance allows.
-  const auto coupling = K.selfadjointView<Eigen::Lower>();
-  const Eigen::VectorXd wanted = coupling * now + residual;
-  Eigen::VectorXd next = factor.solve(wanted);
-  for (int refinement = 0; refinement < kRefinements; ++refinement) next += factor.solve(wanted - coupling * next);
-  if (!next.allFinite() || !admissible(contacts, range, scratch, next)) return false;
+  const double shift = kRegularisation * diagonal.mean();  // the same on every row: the least norm is Euclidean
+  Eigen::VectorXd next;
+  const bool solved = rows <= kMostDenseRows ? leastNormDense(scratch.entries, shift, now, residual, next)
+                                             : leastNormSparse(scratch.entries, shift, now, residual, next);
+  if (!solved || !next.allFinite() || !admissible(contacts, range, scratch, next)) return false;
   applyImpulses(contacts, bodies, range, scratch, next);
   return true;
 }

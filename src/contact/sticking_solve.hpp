@@ -22,12 +22,14 @@ struct StickingScratch {
 };
 
 /// Solves the rows of `range` (each point's normal, and its two tangents where it has friction) as
-/// equalities, K Δλ = target − v with K = J M⁻¹ Jᵀ (every point pushing and sticking), and applies Δλ if
-/// every point's normal impulse stays at or above its floor and its friction within μ times it. True if
-/// applied. K is singular (a face of four points has twelve rows and six degrees of freedom): the solve is
-/// the least-norm one, docs/references.md, "An island that sticks".
+/// equalities, K λ = K λ₀ + target − v with K = J M⁻¹ Jᵀ (every point pushing and sticking), for the
+/// least-norm impulses λ, and applies them if every point's normal impulse is at or above its floor and its
+/// friction within μ times it. True if applied. Not tried (false) for more than 256 points, or where a point
+/// slipped faster than `sliding_speed` [m/s] in the sweeps' last friction update. K is singular (a face of
+/// four points has twelve rows and six degrees of freedom): docs/references.md §4.16. `dt` [s] sets how fast
+/// a point shallower than the resting depth sinks to it.
 bool solveStickingIsland(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range,
-                         double dt, StickingScratch& scratch);
+                         double dt, double sliding_speed, StickingScratch& scratch);
 
 }  // namespace contact
 }  // namespace rigid_body

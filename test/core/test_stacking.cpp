@@ -105,7 +105,8 @@ TEST(Stacking, ATowerOfFiftyAndTwistedTowersOfThirtyAndFortyStand) {
   const Eigen::Vector3d cube(0.2, 0.2, 0.2);
   EXPECT_LE(towerTopMovement(cube, std::vector<double>(50, 1.0), 0.0, 0.0, 10.0), 1e-4) << "fifty";
   EXPECT_LE(towerTopMovement(cube, std::vector<double>(30, 1.0), 0.7, 0.005, 10.0), 1e-3) << "30, 0.7 rad";
-  EXPECT_LE(towerTopMovement(0.5 * cube, std::vector<double>(40, 0.125), 1.1, 0.002, 10.0), 1e-3) << "40 small, 1.1 rad";
+  EXPECT_LE(towerTopMovement(0.5 * cube, std::vector<double>(40, 0.125), 1.1, 0.002, 10.0), 1e-3)
+      << "40 small, 1.1 rad";
 }
 
 // Stacks stepped with semi-implicit Euler used to settle with a face's corners pushing against each other
@@ -119,10 +120,9 @@ TEST(Stacking, StacksSteppedWithSemiImplicitEulerComeToRest) {
   std::vector<BodyDefinition> boxes;
   for (int stack = 0; stack < 3; ++stack) {
     for (int level = 0; level < 10; ++level) {
-      boxes.push_back(reference::contactBody(MassProperties::box(1.0, box),
-                                             Eigen::Vector3d(0.5 * (stack % 2), 0.5 * (stack / 2), 0.1 + 0.2 * level),
-                                             Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
-                                             Eigen::Vector3d(0, 0, -9.81)));
+      const Eigen::Vector3d place(0.5 * (stack % 2), 0.5 * (stack / 2), 0.1 + 0.2 * level);
+      boxes.push_back(reference::contactBody(MassProperties::box(1.0, box), place, Eigen::Quaterniond::Identity(),
+                                             Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0, -9.81)));
       setup.bodies.push_back(reference::collisionShape(ShapeType::kBox, box, 0.5, 0.0));
     }
   }
