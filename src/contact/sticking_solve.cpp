@@ -26,6 +26,7 @@ constexpr double kRestingDepth = 1e-9;
 // Islands of more points are left to the sweeps: the factorisation's cost grows faster than the island
 // (the pyramid of 20 rows, 1 600 points, would pay it in every step).
 constexpr std::size_t kMostPoints = 256;
+constexpr double kNearlyHeld = 1e-13;
 // Islands of up to this many rows are solved in a dense matrix.
 constexpr std::size_t kMostDenseRows = 48;
 
@@ -197,12 +198,31 @@ bool leastNormSparse(std::vector<Eigen::Triplet<double>>& entries, double shift,
   return true;
 }
 
+// Whether every row already holds to what rounding leaves the sweeps: each point's normal and slip
+// residuals would move its impulses by at most kNearlyHeld of the island's largest impulse. The sweeps'
+// tolerance is 1e-14 of it, and their own rounding reaches 2e-14: an island that missed it by that much is
+// not worth a factorisation (settled stacks did, in 2 % of their steps).
+bool nearlyHeld(const std::vector<SolverContact>& contacts, const std::vector<SolverBody>& bodies,
+                const SolveRange& range) {
+  double largest_change = 0.0, largest_impulse = 0.0;
+  for (std::size_t k = range.contact_begin; k < range.contact_end; ++k) {
+    const SolverContact& c = contacts[k];
+    const SolverBody& a = bodies[c.a];
+    const SolverBody& b = bodies[c.b];
+    const double normal = std::abs(rowSpeed(c, 0, a, b) - c.target_speed);
+    const double slip = c.friction > 0.0 ? std::hypot(rowSpeed(c, 1, a, b), rowSpeed(c, 2, a, b)) : 0.0;
+    largest_change = std::max(largest_change, c.normal_mass * std::max(normal, slip));
+    largest_impulse = std::max({largest_impulse, c.normal_impulse, c.friction_impulse.lpNorm<Eigen::Infinity>()});
+  }
+  return largest_change <= kNearlyHeld * largest_impulse;
+}
+
 }  // namespace
 
 bool solveStickingIsland(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range,
                          double dt, double sliding_speed, StickingScratch& scratch) {
   if (range.contact_end - range.contact_begin > kMostPoints) return false;
-  if (sliding(contacts, range, sliding_speed)) return false;
+  if (sliding(contacts, range, sliding_speed) || nearlyHeld(contacts, bodies, range)) return false;
   const std::size_t rows = numberRows(contacts, range, scratch);
   if (rows == 0) return false;
   const auto size = static_cast<Eigen::Index>(rows);

@@ -173,8 +173,9 @@ TEST(StickingSolve, AnIslandThatWouldPullOrSlideIsLeftAsItWas) {
 }
 
 // An island one of whose points slipped faster than the sliding speed in the sweeps' last update is not
-// tried, though it could stick: it is sliding, and the sweeps' result stands.
-TEST(StickingSolve, AnIslandWithASlidingPointIsNotTried) {
+// tried, though it could stick: it is sliding, and the sweeps' result stands. Nor is one whose rows the
+// sweeps left holding to rounding (1e-15 of its impulses).
+TEST(StickingSolve, AnIslandWithASlidingPointOrAlreadyHeldIsNotTried) {
   std::mt19937 random(29);
   Island island = chain(random, {4, 4}, 1e6);
   for (SolverContact& c : island.contacts) c.normal_impulse = 10.0;
@@ -186,6 +187,13 @@ TEST(StickingSolve, AnIslandWithASlidingPointIsNotTried) {
   EXPECT_EQ(velocities(sliding), velocities(island));
   island.contacts[5].slip_squared = 0.9 * kSliding * kSliding;
   EXPECT_TRUE(solveStickingIsland(island.contacts, island.bodies, SolveRange::all(8, 3), 1e-3, kSliding, scratch));
+  // Now held; disturbed by 1e-15 of the impulses' effect, it is left alone, by 1e-11 it is solved again.
+  for (const double disturbance : {1e-15, 1e-11}) {
+    Island held = island;
+    held.bodies[2].v += disturbance * 10.0 * held.bodies[2].inverse_mass * Eigen::Vector3d::UnitZ();
+    const bool tried = solveStickingIsland(held.contacts, held.bodies, SolveRange::all(8, 3), 1e-3, kSliding, scratch);
+    EXPECT_EQ(tried, disturbance > 1e-13) << disturbance;
+  }
 }
 
 // A face that stopped at zero depth would lose its points at the first gap rounding opens: it is sunk to the
@@ -195,6 +203,7 @@ TEST(StickingSolve, AFaceAtZeroDepthSinksToTheRestingDepth) {
     std::mt19937 random(31);
     Island island = chain(random, {4}, 1e6);
     for (SolverContact& c : island.contacts) c.separation = separation, c.normal_impulse = 1.0;
+    island.bodies[1].v = Eigen::Vector3d(0.0, 0.0, -1e-3);  // not yet held: the solve is tried
     const double dt = 1e-3;
     StickingScratch scratch;
     ASSERT_TRUE(solveStickingIsland(island.contacts, island.bodies, SolveRange::all(4, 2), dt, kSliding, scratch));
