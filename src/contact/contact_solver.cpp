@@ -115,9 +115,7 @@ double solvePointNormal(SolverContact& c, SolverBody& a, SolverBody& b) {
 // the sticking impulse back onto the disc instead turns part of it sideways wherever the tangent mass is
 // not isotropic, as at a box's corner, and brakes a sliding box too little.) Returns the impulse's change.
 Eigen::Vector2d solvePointFriction(SolverContact& c, SolverBody& a, SolverBody& b) {
-  const Eigen::Vector3d dv = a.v - b.v;
-  const Eigen::Vector2d slip(c.t1.dot(dv) + c.cross_a.col(1).dot(a.w) - c.cross_b.col(1).dot(b.w),
-                             c.t2.dot(dv) + c.cross_a.col(2).dot(a.w) - c.cross_b.col(2).dot(b.w));
+  const Eigen::Vector2d slip(rowSpeed(c, 1, a, b), rowSpeed(c, 2, a, b));
   c.slip_squared = slip.squaredNorm();
   Eigen::Vector2d friction = c.friction_impulse - c.tangent_mass * slip;
   const double limit = c.friction * c.normal_impulse;

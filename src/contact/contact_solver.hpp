@@ -96,10 +96,20 @@ struct SolveRange {
   static SolveRange all(std::size_t contacts, std::size_t bodies) { return {0, contacts, 0, bodies}; }
 };
 
-/// The contact's normal relative speed, J_n V = n·(v_a − v_b) + (r_a × n)·ω_a − (r_b × n)·ω_b (needs the
-/// products prepareContacts makes).
+/// A contact's direction d: 0 its normal, 1 and 2 its tangents t1 and t2 (the columns of cross_a and the rest).
+inline const Eigen::Vector3d& contactDirection(const SolverContact& c, Eigen::Index d) {
+  return d == 0 ? c.n : d == 1 ? c.t1 : c.t2;
+}
+
+/// The contact's relative speed along its direction d, J_d V = d·(v_a − v_b) + (r_a × d)·ω_a − (r_b × d)·ω_b
+/// (needs the products prepareContacts makes).
+inline double rowSpeed(const SolverContact& c, Eigen::Index d, const SolverBody& a, const SolverBody& b) {
+  return contactDirection(c, d).dot(a.v - b.v) + c.cross_a.col(d).dot(a.w) - c.cross_b.col(d).dot(b.w);
+}
+
+/// The contact's normal relative speed, J_n V.
 inline double normalSpeed(const SolverContact& c, const SolverBody& a, const SolverBody& b) {
-  return c.n.dot(a.v - b.v) + c.cross_a.col(0).dot(a.w) - c.cross_b.col(0).dot(b.w);
+  return rowSpeed(c, 0, a, b);
 }
 
 /// The relative velocity of the contact point of a with respect to b's.

@@ -26,17 +26,10 @@ constexpr double kRestingDepth = 1e-9;
 // Islands of more points are left to the sweeps: the factorisation's cost grows faster than the island
 // (the pyramid of 20 rows, 1 600 points, would pay it in every step).
 constexpr std::size_t kMostPoints = 256;
+// An island whose rows already hold to this fraction of its impulses is left to the sweeps (nearlyHeld).
 constexpr double kNearlyHeld = 1e-13;
 // Islands of up to this many rows are solved in a dense matrix.
 constexpr std::size_t kMostDenseRows = 48;
-
-const Eigen::Vector3d& direction(const SolverContact& c, std::size_t d) { return d == 0 ? c.n : d == 1 ? c.t1 : c.t2; }
-
-// J_row V: the contact's relative velocity along direction d.
-double rowSpeed(const SolverContact& c, std::size_t d, const SolverBody& a, const SolverBody& b) {
-  return direction(c, d).dot(a.v - b.v) + c.cross_a.col(static_cast<Eigen::Index>(d)).dot(a.w) -
-         c.cross_b.col(static_cast<Eigen::Index>(d)).dot(b.w);
-}
 
 // The rows: each point's normal, and its tangents where it has friction (without, they keep their zero).
 std::size_t numberRows(const std::vector<SolverContact>& contacts, const SolveRange& range, StickingScratch& s) {
@@ -85,7 +78,8 @@ void assembleCoupling(const std::vector<SolverContact>& contacts, const std::vec
             if (j == kNoRow || j > i) continue;
             const auto cu = static_cast<Eigen::Index>(u), cv = static_cast<Eigen::Index>(v);
             const double value =
-                sign * (inverse_mass * direction(p, u).dot(direction(q, v)) + cross.col(cu).dot(response.col(cv)));
+                sign * (inverse_mass * contactDirection(p, cu).dot(contactDirection(q, cv)) +
+                        cross.col(cu).dot(response.col(cv)));
             s.entries.emplace_back(static_cast<int>(i), static_cast<int>(j), value);
             if (i == j) diagonal[static_cast<Eigen::Index>(i)] += value;
           }
@@ -108,7 +102,7 @@ void rowResiduals(const std::vector<SolverContact>& contacts, const std::vector<
       target = std::min(target, -(c.separation + kRestingDepth) / dt);
     }
     const auto row = static_cast<Eigen::Index>(i);
-    residual[row] = target - rowSpeed(c, d, bodies[c.a], bodies[c.b]);
+    residual[row] = target - rowSpeed(c, static_cast<Eigen::Index>(d), bodies[c.a], bodies[c.b]);
     now[row] = d == 0 ? c.normal_impulse : c.friction_impulse[static_cast<Eigen::Index>(d - 1)];
   }
 }

@@ -13,19 +13,20 @@
 namespace rigid_body {
 namespace contact {
 
-/// What a direct solve keeps between calls (its lists and matrices), so that a thread's solves reuse them.
+/// What a direct solve keeps between calls (its lists), so that a thread's solves reuse their memory.
 struct StickingScratch {
   std::vector<std::size_t> row_of;   // per contact direction (3 k + d): its row, or kNoRow
-  std::vector<std::size_t> contact;  // per row: contact index (3 k + d)
-  std::vector<Eigen::Triplet<double>> entries;
-  std::vector<std::vector<std::size_t>> rows_on;  // per body of the range: the rows (3 k + d) that touch it
+  std::vector<std::size_t> contact;  // per row: its contact direction (3 k + d)
+  std::vector<Eigen::Triplet<double>> entries;    // K's lower triangle
+  std::vector<std::vector<std::size_t>> rows_on;  // per body of the range: its contacts, 2 k (side a) or 2 k + 1 (b)
 };
 
 /// Solves the rows of `range` (each point's normal, and its two tangents where it has friction) as
 /// equalities, K λ = K λ₀ + target − v with K = J M⁻¹ Jᵀ (every point pushing and sticking), for the
 /// least-norm impulses λ, and applies them if every point's normal impulse is at or above its floor and its
-/// friction within μ times it. True if applied. Not tried (false) for more than 256 points, or where a point
-/// slipped faster than `sliding_speed` [m/s] in the sweeps' last friction update. K is singular (a face of
+/// friction within μ times it. True if applied. Not tried (false) for more than 256 points, where a point
+/// slipped faster than `sliding_speed` [m/s] in the sweeps' last friction update, or where every row already
+/// holds to 1e-13 of the island's impulses. K is singular (a face of
 /// four points has twelve rows and six degrees of freedom): docs/references.md §4.16. `dt` [s] sets how fast
 /// a point shallower than the resting depth sinks to it.
 bool solveStickingIsland(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range,
