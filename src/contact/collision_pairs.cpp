@@ -2,6 +2,7 @@
 // points on a half-space, and the pair distance that locates impacts and sweeps fast bodies.
 #include "collision_world.hpp"
 
+#include "box_separation.hpp"
 #include "collision_world_impl.hpp"
 #include "face_manifold.hpp"
 
@@ -67,6 +68,41 @@ bool CollisionWorld::addFacePoints(const ContactPoint& query, double max_distanc
   if (clipped <= query.distance + kFaceDepthTolerance) return true;
   points.resize(first);
   return false;
+}
+
+bool CollisionWorld::boxPair(std::size_t a, std::size_t b) const {
+  return proxyType(a) == BOX_SHAPE_PROXYTYPE && proxyType(b) == BOX_SHAPE_PROXYTYPE;
+}
+
+bool CollisionWorld::addBoxPoints(std::size_t a, std::size_t b, double max_distance, PairScratch& scratch,
+                                  std::vector<ContactPoint>& points) {
+  const HullFaces *hull_a = nullptr, *hull_b = nullptr;
+  const Eigen::Isometry3d *X_WA = nullptr, *X_WB = nullptr;
+  const CollisionShape& box_a = *facedShape(a, &hull_a, &X_WA);
+  const CollisionShape& box_b = *facedShape(b, &hull_b, &X_WB);
+  const BoxSeparation separation = separateBoxes(*X_WA, 0.5 * box_a.size, *X_WB, 0.5 * box_b.size);
+  if (!(separation.distance <= max_distance)) return false;
+  ContactPoint query;
+  query.a = a, query.b = b;
+  query.on_a = separation.on_a, query.on_b = separation.on_b;
+  query.normal = separation.normal;
+  query.distance = separation.distance;
+  // A face along the axis (the axis is a face's normal, or an edge lies on a face): the clipped points;
+  // else two edges across each other meet at one point.
+  if (clipPairFaces(query, max_distance, scratch, points)) return true;
+  if (!separation.edges || !separation.edges_cross) return false;
+  points.push_back(query);
+  return true;
+}
+
+bool CollisionWorld::addBoxPoints(const btPersistentManifold& manifold, double max_distance, PairScratch& scratch,
+                                  std::vector<ContactPoint>& points) {
+  const btCollisionObject* object_a = manifold.getBody0();
+  const btCollisionObject* object_b = manifold.getBody1();
+  const auto a = static_cast<std::size_t>(object_a->getUserIndex());
+  const auto b = static_cast<std::size_t>(object_b->getUserIndex());
+  if (!boxPair(a, b) || !impl_->dispatcher.testsPair(object_a, object_b)) return false;
+  return addBoxPoints(a, b, max_distance, scratch, points);
 }
 
 bool CollisionWorld::addTrianglePoints(const btPersistentManifold& manifold, double max_distance, PairScratch& scratch,
@@ -155,6 +191,15 @@ double CollisionWorld::pairDistance(std::size_t a, std::size_t b, double max_dis
     std::vector<ContactPoint>& out = points ? *points : impl_->clipped_points;
     out.clear();
     return isPlane(b) ? planeContacts(a, b, max_distance, out) : planeContacts(b, a, max_distance, out);
+  }
+  if (boxPair(a, b)) {
+    std::vector<ContactPoint>& out = points ? *points : impl_->clipped_points;
+    out.clear();
+    double smallest = max_distance;
+    if (addBoxPoints(a, b, max_distance, impl_->scratch, out)) {
+      for (const ContactPoint& point : out) smallest = std::min(smallest, point.distance);
+    }
+    return smallest;
   }
   std::vector<ContactPoint>& found = impl_->pair_points;
   found.clear();

@@ -201,7 +201,8 @@ void CollisionWorld::addManifoldPoints(int m, const DetectRequest& request, Pair
   const btPersistentManifold* manifold = impl_->dispatcher.getManifoldByIndexInternal(m);
   const double max_distance = request.max_distance;
   const std::size_t first = points.size();
-  if (addFacePoints(*manifold, max_distance, scratch, points) || addTrianglePoints(*manifold, max_distance, scratch, points)) {
+  if (addBoxPoints(*manifold, max_distance, scratch, points) || addFacePoints(*manifold, max_distance, scratch, points) ||
+      addTrianglePoints(*manifold, max_distance, scratch, points)) {
     if (movesInStep(request, points, first)) {
       addSpeculativePoints(first, max_distance, request.speculative_distance, max_distance, scratch, points);
     }

@@ -1,9 +1,10 @@
 // The collision library behind the contact step: Bullet's collision module (double precision), used for what
 // it is made for: a dynamic AABB tree broad phase, narrow phases per shape pair (one GJK/EPA query whose
-// normal face clipping turns into the pair's points, face_manifold.hpp; Bullet's own box–box and sphere
-// algorithms), pair distances and box queries. Nothing of Bullet leaves its sources (collision_world.cpp,
-// collision_pairs.cpp, their collision_world_impl.hpp, and convex_hull.cpp); the rest of the core sees Eigen
-// types.
+// normal face clipping turns into the pair's points, face_manifold.hpp; for two boxes a separating-axis test
+// of our own gives that normal, box_separation.hpp; Bullet's own sphere algorithms), pair distances and box
+// queries. Nothing of Bullet leaves its sources (collision_world.cpp, collision_pairs.cpp,
+// speculative_points.cpp, near_dispatcher.cpp, their collision_world_impl.hpp, and convex_hull.cpp); the
+// rest of the core sees Eigen types.
 #pragma once
 
 #include <Eigen/Core>
@@ -116,8 +117,8 @@ class CollisionWorld {
                        double beyond = -std::numeric_limits<double>::infinity()) const;
   /// A pair's speculative points: points[first…] are the pair's, at least one within max_distance. Its
   /// faces' points farther apart than `beyond` are added (those within max_distance as ordinary points):
-  /// max_distance for a pair whose points came from face clipping, 0 for a box pair (its detector gives
-  /// penetrating points only).
+  /// max_distance for a pair whose points came from face clipping (box pairs included), 0 for a pair whose
+  /// narrow phase gave others.
   void addSpeculativePoints(std::size_t first, double max_distance, double speculative_distance, double beyond,
                             PairScratch& scratch, std::vector<ContactPoint>& points);
   /// The shape of an object whose faces give its contact points (faceClippedPair in collision_world_impl.hpp
@@ -135,6 +136,16 @@ class CollisionWorld {
                      std::vector<ContactPoint>& points);
   bool addFacePoints(const btPersistentManifold& manifold, double max_distance, PairScratch& scratch,
                      std::vector<ContactPoint>& points);
+  /// Whether both objects are boxes.
+  bool boxPair(std::size_t a, std::size_t b) const;
+  /// Two boxes: their points within max_distance by face clipping along their best separating axis
+  /// (box_separation.hpp), or the nearest points of two edges across each other; returns whether it added
+  /// any. The manifold's: false, adding nothing, for a pair that is not two boxes or that the detection did
+  /// not test (asleep, or beyond the near distance).
+  bool addBoxPoints(std::size_t a, std::size_t b, double max_distance, PairScratch& scratch,
+                    std::vector<ContactPoint>& points);
+  bool addBoxPoints(const btPersistentManifold& manifold, double max_distance, PairScratch& scratch,
+                    std::vector<ContactPoint>& points);
   /// A body on an environment mesh: for each triangle that holds a point of the manifold, the body's face
   /// along the triangle's deepest point's normal clipped against the triangle (the triangle's own point
   /// where they are not faces along it), at most four points for the pair; false, adding nothing, where the

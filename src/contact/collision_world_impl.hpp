@@ -46,10 +46,10 @@ inline ContactPoint pointFrom(const btManifoldPoint& p, const btCollisionObject*
   return point;
 }
 
-// Which pairs face clipping serves (face_manifold.hpp), by Bullet's shape types: both shapes with faces to
-// clip (a box, a cylinder's ends and side, a capsule's segment, a body's hull), except box–box, which keeps
-// btBoxBoxDetector (a face's points in one pass). The one rule for the query's reach below and for
-// CollisionWorld::addFacePoints.
+// Which pairs face clipping from a GJK/EPA query serves (face_manifold.hpp), by Bullet's shape types: both
+// shapes with faces to clip (a box, a cylinder's ends and side, a capsule's segment, a body's hull), except
+// box–box, whose normal comes from the boxes' separating-axis test instead (CollisionWorld::addBoxPoints).
+// The one rule for the query's reach below and for CollisionWorld::addFacePoints.
 inline bool facedType(int type) {
   return type == BOX_SHAPE_PROXYTYPE || type == CYLINDER_SHAPE_PROXYTYPE || type == CAPSULE_SHAPE_PROXYTYPE ||
          type == CONVEX_HULL_SHAPE_PROXYTYPE;
@@ -73,8 +73,8 @@ inline double queryReach(const btCollisionObject& a, const btCollisionObject& b)
   return rounding(a, type_a) + rounding(b, type_b);
 }
 
-// Box–box (btBoxBoxDetector: a face's points in one pass), sphere–sphere and sphere–box keep Bullet's
-// dedicated algorithms; the other convex pairs get one query and face clipping. (A triangle of an
+// Box–box (whose narrow phase the dispatcher skips: CollisionWorld::addBoxPoints), sphere–sphere and
+// sphere–box keep Bullet's dedicated algorithms; the other convex pairs get one query and face clipping. (A triangle of an
 // environment mesh keeps the multi-point mode: its pairs are not registered here.)
 inline bool hasDedicatedAlgorithm(int a, int b) {
   const auto box_or_sphere = [](int type) { return type == BOX_SHAPE_PROXYTYPE || type == SPHERE_SHAPE_PROXYTYPE; };
@@ -140,9 +140,9 @@ struct CollisionWorld::Impl {
 
   Impl() {
     // A face resting on a face needs several points in one pass. Convex pairs get them by face clipping
-    // after one query (registered below, for detection and for pairDistance); a shape on a triangle of an
-    // environment mesh, and box pairs' closest points, by perturbing the orientation (Bullet's multi-point
-    // iterations).
+    // after one query (registered below, for detection and for pairDistance), two boxes from their
+    // separating axis (CollisionWorld::addBoxPoints); a shape on a triangle of an environment mesh by
+    // perturbing the orientation (Bullet's multi-point iterations).
     configuration.setPlaneConvexMultipointIterations(4, 4);
     configuration.setConvexConvexMultipointIterations(4, 4);
     one_query.m_numPerturbationIterations = 0;

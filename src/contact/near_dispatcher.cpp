@@ -6,8 +6,11 @@ namespace rigid_body {
 namespace contact {
 
 bool NearDispatcher::needsNarrowPhase(const btBroadphasePair& pair) {
-  const auto* a = static_cast<const btCollisionObject*>(pair.m_pProxy0->m_clientObject);
-  const auto* b = static_cast<const btCollisionObject*>(pair.m_pProxy1->m_clientObject);
+  return testsPair(static_cast<const btCollisionObject*>(pair.m_pProxy0->m_clientObject),
+                   static_cast<const btCollisionObject*>(pair.m_pProxy1->m_clientObject));
+}
+
+bool NearDispatcher::testsPair(const btCollisionObject* a, const btCollisionObject* b) {
   if (!needsCollision(a, b)) return false;
   // The broad phase pairs boxes fattened for motion (Bullet's tree margin and velocity prediction), so in a
   // pile most of its pairs fail this test.
@@ -23,6 +26,12 @@ bool NearDispatcher::needsNarrowPhase(const btBroadphasePair& pair) {
 void NearDispatcher::processPair(btBroadphasePair& pair, const btDispatcherInfo& info, btManifoldArray& manifolds) {
   auto* a = static_cast<btCollisionObject*>(pair.m_pProxy0->m_clientObject);
   auto* b = static_cast<btCollisionObject*>(pair.m_pProxy1->m_clientObject);
+  // Two boxes get their points from the contact step's own separating-axis test and face clipping
+  // (CollisionWorld::addBoxPoints), not from Bullet's box–box detector; their manifold stays empty.
+  if (a->getCollisionShape()->getShapeType() == BOX_SHAPE_PROXYTYPE &&
+      b->getCollisionShape()->getShapeType() == BOX_SHAPE_PROXYTYPE) {
+    return;
+  }
   btCollisionObjectWrapper a_wrap(nullptr, a->getCollisionShape(), a, a->getWorldTransform(), -1, -1);
   btCollisionObjectWrapper b_wrap(nullptr, b->getCollisionShape(), b, b->getWorldTransform(), -1, -1);
   btManifoldResult result(&a_wrap, &b_wrap);

@@ -35,9 +35,12 @@ struct NearDispatcher : btCollisionDispatcher {
   /// manifolds' order, and so the points', is that of the serial dispatch on any thread count.
   void dispatchAllCollisionPairs(btOverlappingPairCache* pairs, const btDispatcherInfo& info, btDispatcher*) override;
 
+  /// Whether a pair is tested at all: Bullet's filter (two sleeping bodies, or a sleeping body and the
+  /// environment, are not), then the bounding spheres (two bodies whose spheres are farther apart than the
+  /// near distance have no point within it: one subtraction instead of a query).
+  bool testsPair(const btCollisionObject* a, const btCollisionObject* b);
+
  private:
-  /// Whether a pair is tested at all: Bullet's filter, then the bounding spheres (two bodies whose spheres
-  /// are farther apart than the near distance have no point within it: one subtraction instead of a query).
   bool needsNarrowPhase(const btBroadphasePair& pair);
   /// One pair's narrow phase (btCollisionDispatcher::defaultNearCallback, with the result's distance
   /// threshold set); `manifolds` is scratch.

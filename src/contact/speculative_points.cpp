@@ -21,7 +21,7 @@ void CollisionWorld::addSpeculativePoints(std::size_t first, double max_distance
   if (!(points[deepest].distance <= max_distance)) return;
   const ContactPoint query = points[deepest];
   // Shapes with faces only (a sphere's one point is all it has; a triangle of an environment mesh is not
-  // known to the face code); box pairs too, whose detector gives penetrating points only.
+  // known to the face code).
   if (!facedType(proxyType(query.a)) || !facedType(proxyType(query.b))) return;
   std::vector<ContactPoint>& clipped = scratch.speculative_points;
   clipped.clear();

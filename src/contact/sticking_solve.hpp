@@ -6,6 +6,7 @@
 
 #include <Eigen/SparseCore>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "contact_solver.hpp"
@@ -19,16 +20,18 @@ struct StickingScratch {
   std::vector<std::size_t> contact;  // per row: its contact direction (3 k + d)
   std::vector<Eigen::Triplet<double>> entries;    // K's lower triangle
   std::vector<std::vector<std::size_t>> rows_on;  // per body of the range: its contacts, 2 k (side a) or 2 k + 1 (b)
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> velocities;  // per body of the range: (v, ω) before
 };
 
 /// Solves the rows of `range` (each point's normal, and its two tangents where it has friction) as
 /// equalities, K λ = K λ₀ + target − v with K = J M⁻¹ Jᵀ (every point pushing and sticking), for the
 /// least-norm impulses λ, and applies them if every point's normal impulse is at or above its floor and its
-/// friction within μ times it. True if applied. Not tried (false) for more than 256 points, where a point
-/// slipped faster than `sliding_speed` [m/s] in the sweeps' last friction update, or where every row already
-/// holds to 1e-13 of the island's impulses. K is singular (a face of
-/// four points has twelve rows and six degrees of freedom): docs/references.md §4.16. `dt` [s] sets how fast
-/// a point shallower than the resting depth sinks to it.
+/// friction within μ times it. A point apart by more than 1e-9 m that the sweeps left unpressed is no row;
+/// the result is kept only if it then closes no more than its gap within the step `dt` [s]. True if applied.
+/// Not tried (false) for more than 256 points, where a point slipped faster than `sliding_speed` [m/s] in
+/// the sweeps' last friction update, or where every row already holds to 1e-13 of the island's impulses. K
+/// is singular (a face of four points has twelve rows and six degrees of freedom): docs/references.md §4.16.
+/// A point shallower than half the resting depth (1e-9 m) is sunk to it within the step.
 bool solveStickingIsland(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range,
                          double dt, double sliding_speed, StickingScratch& scratch);
 

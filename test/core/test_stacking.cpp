@@ -45,7 +45,7 @@ namespace {
 // and set off sideways by up to `offset`; settled for 0.5 s. Returns how far its top moves over the next
 // `seconds`.
 double towerTopMovement(const Eigen::Vector3d& size, const std::vector<double>& masses, double yaw, double offset,
-                        double seconds) {
+                        double seconds, double h = 1e-3) {
   ContactSetup setup;
   setup.environment = {reference::groundPlane(Eigen::Vector3d::UnitZ(), 0.5)};
   setup.settings.sleep = false;  // standing by itself, not held by sleep
@@ -58,12 +58,12 @@ double towerTopMovement(const Eigen::Vector3d& size, const std::vector<double>& 
                                            Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0, -9.81)));
     setup.bodies.push_back(reference::collisionShape(ShapeType::kBox, size, 0.5, 0.0));
   }
-  Scene scene(boxes, IntegratorType::kRk4, 1e-3, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
-  scene.step(500);
+  Scene scene(boxes, IntegratorType::kRk4, h, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+  scene.step(std::llround(0.5 / h));
   const Eigen::Vector3d settled = scene.state(boxes.size() - 1).p_WB;
   double largest = 0.0;
   for (int s = 0; s < static_cast<int>(seconds * 10.0); ++s) {
-    scene.step(100);
+    scene.step(std::llround(0.1 / h));
     largest = std::max(largest, (scene.state(boxes.size() - 1).p_WB - settled).norm());
   }
   return largest;
@@ -107,6 +107,24 @@ TEST(Stacking, ATowerOfFiftyAndTwistedTowersOfThirtyAndFortyStand) {
   EXPECT_LE(towerTopMovement(cube, std::vector<double>(30, 1.0), 0.7, 0.005, 10.0), 1e-3) << "30, 0.7 rad";
   EXPECT_LE(towerTopMovement(0.5 * cube, std::vector<double>(40, 0.125), 1.1, 0.002, 10.0), 1e-3)
       << "40 small, 1.1 rad";
+}
+
+// Coarse steps: each step's free motion sinks a resting face by g h²/2 (0.5 mm at h = 10 ms, 2 mm at 20 ms,
+// beyond the slop) before the solve stops it, and a tower placed face on face at zero depth is a chain of
+// contacts at rounding's edge. Towers of ten are held to the stack's target (0.01 mm over 10 s), one of
+// twenty to the tall towers' 1 mm. Before: boxes touching to rounding had no contact (the box–box detector
+// reported overlap only) and the tower fell through itself a face per step (4 mm at h = 10 ms); a face's
+// corner clipped where two sides of equal faces cross at rounding's angle jumped along its edge and lost its
+// warm start (ten 1 m cubes collapsed after 8 s); a box's speculative top corners made the island solve's
+// rows contradict its bottom ones (a tower of ten at h = 20 ms sank 45 mm in 0.5 s).
+TEST(Stacking, TowersPlacedFaceOnFaceStandAtCoarseSteps) {
+  const Eigen::Vector3d cube(0.2, 0.2, 0.2);
+  for (const double h : {0.004, 0.01, 0.02}) {
+    EXPECT_LE(towerTopMovement(cube, std::vector<double>(10, 1.0), 0.0, 0.0, 10.0, h), 1e-5) << "ten, h " << h;
+  }
+  EXPECT_LE(towerTopMovement(0.25 * cube, std::vector<double>(10, 0.02), 0.0, 0.0, 10.0, 0.01), 1e-5) << "5 cm";
+  EXPECT_LE(towerTopMovement(5.0 * cube, std::vector<double>(10, 100.0), 0.0, 0.0, 10.0, 0.01), 1e-5) << "1 m";
+  EXPECT_LE(towerTopMovement(cube, std::vector<double>(20, 1.0), 0.0, 0.0, 10.0, 0.02), 1e-3) << "twenty, 20 ms";
 }
 
 // Stacks stepped with semi-implicit Euler used to settle with a face's corners pushing against each other

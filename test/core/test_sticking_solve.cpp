@@ -3,7 +3,8 @@
 // solver's products) and its pseudo-inverse: a missing coupling between two faces of one body, a wrong sign
 // on a contact's side b, a solve for the change (which keeps the corners' internal pushing) instead of the
 // impulses, or a regularisation left unrefined fails it. An island that would have to pull or slide is
-// refused and left as it was; a face at zero depth is sunk to the resting depth.
+// refused and left as it was; a face at zero depth is sunk to the resting depth; a point apart and unpressed
+// is no row.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -196,8 +197,9 @@ TEST(StickingSolve, AnIslandWithASlidingPointOrAlreadyHeldIsNotTried) {
   }
 }
 
-// A face that stopped at zero depth would lose its points at the first gap rounding opens: it is sunk to the
-// resting depth (1e-9 m) within the step. A face already deeper than half of it is held where it is.
+// A face held at zero depth has points on either side of it by rounding, and those apart ask to close by
+// their gap: the sweeps never settle on it. It is sunk to the resting depth (1e-9 m) within the step; a face
+// already deeper than half of it is held where it is.
 TEST(StickingSolve, AFaceAtZeroDepthSinksToTheRestingDepth) {
   for (const double separation : {0.0, -1e-6}) {
     std::mt19937 random(31);
@@ -211,5 +213,62 @@ TEST(StickingSolve, AFaceAtZeroDepthSinksToTheRestingDepth) {
     for (const SolverContact& c : island.contacts) {
       EXPECT_NEAR(normalSpeed(c, island.bodies[c.a], island.bodies[c.b]), expected, 1e-12) << separation;
     }
+  }
+}
+
+// A point still apart that the sweeps left unpressed is no row. A box's top corners, speculative on the
+// ground 0.2 m above its bottom ones and allowed to close at 0.2 m per step, contradict the bottom corners'
+// stop as equalities (the least-norm impulses were of order 1e9 N s, and the island was refused): left out,
+// the island is solved and they keep no impulse. A point left out that the solve would close faster than its
+// target allows (here one on a body that keeps turning about its single pressed point) has the solve refused
+// and the island left as it was, to the bit.
+TEST(StickingSolve, APointStillApartAndUnpressedIsNoRow) {
+  const double dt = 1e-3;
+  {
+    std::mt19937 random(37);
+    Island island = chain(random, {4, 4}, 1e6);
+    for (SolverContact& c : island.contacts) c.normal_impulse = 1.0;
+    for (std::size_t k = 0; k < 4; ++k) {
+      SolverContact top = island.contacts[k];
+      top.r_a += 0.2 * top.n;
+      top.separation = 0.2;
+      top.normal_impulse = 0.0;
+      island.contacts.push_back(top);
+    }
+    prepareContactRows(island.contacts, island.bodies, SolveOptions(), 0, island.contacts.size());
+    for (std::size_t k = 8; k < 12; ++k) island.contacts[k].target_speed = -0.2 / dt;
+    island.bodies[1].v = Eigen::Vector3d(0.0, 0.0, -1e-3);
+    StickingScratch scratch;
+    ASSERT_TRUE(solveStickingIsland(island.contacts, island.bodies, SolveRange::all(12, 3), dt, kSliding, scratch));
+    for (std::size_t k = 0; k < 8; ++k) {
+      const SolverContact& c = island.contacts[k];
+      EXPECT_NEAR(normalSpeed(c, island.bodies[c.a], island.bodies[c.b]), 0.0, 1e-12) << k;
+    }
+    for (std::size_t k = 8; k < 12; ++k) EXPECT_EQ(island.contacts[k].normal_impulse, 0.0) << k;
+  }
+  {
+    std::mt19937 random(41);
+    Island island = chain(random, {4, 1}, 1e6);
+    for (SolverContact& c : island.contacts) c.normal_impulse = 1.0;
+    SolverContact beside = island.contacts[4];
+    beside.r_a += 0.3 * beside.t1;
+    if (beside.b != kEnvironment) beside.r_b += 0.3 * beside.t1;
+    beside.separation = 2e-9;
+    beside.normal_impulse = 0.0;
+    island.contacts.push_back(beside);
+    prepareContactRows(island.contacts, island.bodies, SolveOptions(), 0, island.contacts.size());
+    island.contacts[5].target_speed = -2e-9 / dt;
+    // Body 2 turns about its one pressed point (which is then at rest) so that the point beside closes at
+    // 0.3 m/s; body 1 sinks, so the island is not held and the solve is tried.
+    SolverBody& top = island.bodies[2];
+    top.w = beside.t2;  // 1 rad/s
+    top.v = island.bodies[1].v + island.bodies[1].w.cross(island.contacts[4].r_b) - top.w.cross(island.contacts[4].r_a);
+    island.bodies[1].v += Eigen::Vector3d(0.0, 0.0, -1e-3);
+    ASSERT_LT(normalSpeed(island.contacts[5], top, island.bodies[1]), -0.1);
+    const Island before = island;
+    StickingScratch scratch;
+    EXPECT_FALSE(solveStickingIsland(island.contacts, island.bodies, SolveRange::all(6, 3), dt, kSliding, scratch));
+    EXPECT_EQ(impulses(island), impulses(before));
+    EXPECT_EQ(velocities(island), velocities(before));
   }
 }
