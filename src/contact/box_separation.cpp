@@ -77,6 +77,10 @@ BoxSeparation separateBoxes(const Eigen::Isometry3d& X_WA, const Eigen::Vector3d
     }
   }
   BoxSeparation out;
+  if (best < 0) {  // no gap compared: a pose or size not finite
+    out.distance = std::numeric_limits<double>::quiet_NaN();
+    return out;
+  }
   out.distance = gap;
   out.normal = axis.dot(d) > 0.0 ? Eigen::Vector3d(-axis) : axis;  // from b towards a
   const Eigen::Vector3d& n = out.normal;

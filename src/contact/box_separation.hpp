@@ -29,7 +29,8 @@ struct BoxSeparation {
   bool edges_cross = false;
 };
 
-/// Boxes with half extents `half_a`, `half_b` placed at X_WA, X_WB. A face axis wins ties with an edge axis
+/// Boxes with half extents `half_a`, `half_b` placed at X_WA, X_WB; the distance is NaN where no gap can be
+/// compared (a pose or size not finite), so that no point is made from it. A face axis wins ties with an edge axis
 /// (two boxes face to face give their face's normal, not a cross product that equals it), and where the
 /// boxes overlap it wins unless the edge axis's depth is 5 % smaller.
 BoxSeparation separateBoxes(const Eigen::Isometry3d& X_WA, const Eigen::Vector3d& half_a, const Eigen::Isometry3d& X_WB,

@@ -259,3 +259,15 @@ TEST(KeepFourPoints, RoundingDoesNotChangeWhichPointsAreKept) {
     }
   }
 }
+
+// A pose that is not finite gives no axis and a NaN distance, which makes no point, rather than the −∞ a
+// first comparison would leave (and which would have made points from nothing); one at infinity or 1e300 m
+// away is simply far.
+TEST(BoxSeparation, APoseNotFiniteGivesNoDistance) {
+  Box a, b;
+  for (const double far : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), 1e300}) {
+    b.X.translation() = Eigen::Vector3d(far, 0.0, 0.0);
+    const BoxSeparation s = contact::separateBoxes(a.X, a.half, b.X, b.half);
+    EXPECT_FALSE(s.distance <= kNear) << far;
+  }
+}
