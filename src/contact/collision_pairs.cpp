@@ -71,7 +71,7 @@ bool CollisionWorld::addFacePoints(const ContactPoint& query, double max_distanc
 }
 
 bool CollisionWorld::boxPair(std::size_t a, std::size_t b) const {
-  return proxyType(a) == BOX_SHAPE_PROXYTYPE && proxyType(b) == BOX_SHAPE_PROXYTYPE;
+  return boxBoxPair(proxyType(a), proxyType(b));
 }
 
 bool CollisionWorld::addBoxPoints(std::size_t a, std::size_t b, double max_distance, PairScratch& scratch,
@@ -175,6 +175,13 @@ double CollisionWorld::planeContacts(std::size_t body, std::size_t plane_object,
 
 namespace {
 
+// The smallest distance of `points`, or max_distance if there are none.
+double smallestDistance(const std::vector<ContactPoint>& points, double max_distance) {
+  double smallest = max_distance;
+  for (const ContactPoint& point : points) smallest = std::min(smallest, point.distance);
+  return smallest;
+}
+
 struct PairCollector : btCollisionWorld::ContactResultCallback {
   std::vector<ContactPoint>* points = nullptr;
   btScalar addSingleResult(btManifoldPoint& p, const btCollisionObjectWrapper* a, int, int,
@@ -187,19 +194,14 @@ struct PairCollector : btCollisionWorld::ContactResultCallback {
 }  // namespace
 
 double CollisionWorld::pairDistance(std::size_t a, std::size_t b, double max_distance, std::vector<ContactPoint>* points) {
+  std::vector<ContactPoint>& out = points ? *points : impl_->clipped_points;
+  out.clear();
   if (isPlane(a) || isPlane(b)) {
-    std::vector<ContactPoint>& out = points ? *points : impl_->clipped_points;
-    out.clear();
     return isPlane(b) ? planeContacts(a, b, max_distance, out) : planeContacts(b, a, max_distance, out);
   }
   if (boxPair(a, b)) {
-    std::vector<ContactPoint>& out = points ? *points : impl_->clipped_points;
-    out.clear();
-    double smallest = max_distance;
-    if (addBoxPoints(a, b, max_distance, impl_->scratch, out)) {
-      for (const ContactPoint& point : out) smallest = std::min(smallest, point.distance);
-    }
-    return smallest;
+    addBoxPoints(a, b, max_distance, impl_->scratch, out);
+    return smallestDistance(out, max_distance);
   }
   std::vector<ContactPoint>& found = impl_->pair_points;
   found.clear();
@@ -212,12 +214,8 @@ double CollisionWorld::pairDistance(std::size_t a, std::size_t b, double max_dis
   const auto deepest = std::min_element(found.begin(), found.end(), [](const ContactPoint& x, const ContactPoint& y) {
     return x.distance < y.distance;
   });
-  std::vector<ContactPoint>& out = points ? *points : impl_->clipped_points;
-  out.clear();
   if (deepest != found.end() && addFacePoints(*deepest, max_distance, impl_->scratch, out)) {
-    double smallest = max_distance;
-    for (const ContactPoint& point : out) smallest = std::min(smallest, point.distance);
-    return smallest;
+    return smallestDistance(out, max_distance);
   }
   // Else the query's own points, those within max_distance (the reach may have found farther ones).
   double smallest = max_distance;

@@ -54,8 +54,11 @@ inline bool facedType(int type) {
   return type == BOX_SHAPE_PROXYTYPE || type == CYLINDER_SHAPE_PROXYTYPE || type == CAPSULE_SHAPE_PROXYTYPE ||
          type == CONVEX_HULL_SHAPE_PROXYTYPE;
 }
+inline bool boxBoxPair(int type_a, int type_b) {
+  return type_a == BOX_SHAPE_PROXYTYPE && type_b == BOX_SHAPE_PROXYTYPE;
+}
 inline bool faceClippedPair(int type_a, int type_b) {
-  return facedType(type_a) && facedType(type_b) && !(type_a == BOX_SHAPE_PROXYTYPE && type_b == BOX_SHAPE_PROXYTYPE);
+  return facedType(type_a) && facedType(type_b) && !boxBoxPair(type_a, type_b);
 }
 
 // How much farther than the near distance a pair's one query must look for face clipping to find what is

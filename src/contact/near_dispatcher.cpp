@@ -28,10 +28,7 @@ void NearDispatcher::processPair(btBroadphasePair& pair, const btDispatcherInfo&
   auto* b = static_cast<btCollisionObject*>(pair.m_pProxy1->m_clientObject);
   // Two boxes get their points from the contact step's own separating-axis test and face clipping
   // (CollisionWorld::addBoxPoints), not from Bullet's box–box detector; their manifold stays empty.
-  if (a->getCollisionShape()->getShapeType() == BOX_SHAPE_PROXYTYPE &&
-      b->getCollisionShape()->getShapeType() == BOX_SHAPE_PROXYTYPE) {
-    return;
-  }
+  if (boxBoxPair(a->getCollisionShape()->getShapeType(), b->getCollisionShape()->getShapeType())) return;
   btCollisionObjectWrapper a_wrap(nullptr, a->getCollisionShape(), a, a->getWorldTransform(), -1, -1);
   btCollisionObjectWrapper b_wrap(nullptr, b->getCollisionShape(), b, b->getWorldTransform(), -1, -1);
   btManifoldResult result(&a_wrap, &b_wrap);

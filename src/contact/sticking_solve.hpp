@@ -29,8 +29,9 @@ struct StickingScratch {
 /// friction within μ times it. A point apart by more than 1e-9 m that the sweeps left unpressed is no row;
 /// the result is kept only if it then closes no more than its gap within the step `dt` [s]. True if applied.
 /// Not tried (false) for more than 256 points, where a point of a pair that already touched slipped faster
-/// than `sliding_speed` [m/s] in the sweeps' last friction update, or where every row already holds to 1e-13 of the island's impulses. K
-/// is singular (a face of four points has twelve rows and six degrees of freedom): docs/references.md §4.16.
+/// than `sliding_speed` [m/s] in the sweeps' last friction update, or where every row already holds to 1e-13
+/// of the island's impulses. K is singular (a face of four points has twelve rows and six degrees of
+/// freedom): docs/references.md §4.16.
 /// A point shallower than half the resting depth (1e-9 m) is sunk to it within the step.
 bool solveStickingIsland(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range,
                          double dt, double sliding_speed, StickingScratch& scratch);
