@@ -83,7 +83,8 @@ RIGID_BODY_LANE_INLINE void runSweeps(std::vector<ManifoldLanes<T>>& groups, Lan
     // To rounding within the sweeps asked for; beyond them, to a change of 1e-9 of the impulses.
     const double tolerance = sweep < static_cast<std::size_t>(iterations) ? 1e-14 : 1e-9;
     for (std::size_t i = 0; i < count; ++i) {
-      if (islands.live[i]) converged[i] = islands.change[i] <= tolerance * islands.impulse[i];
+      if (!islands.live[i] || islands.change[i] > tolerance * islands.impulse[i]) continue;
+      converged[i] = sweep < static_cast<std::size_t>(iterations) ? kConvergedInSweeps : kConvergedBeyond;
     }
   }
 }

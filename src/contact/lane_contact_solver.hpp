@@ -26,6 +26,12 @@ struct LaneSettings {
   bool wide_instructions = true;
 };
 
+/// How an island's sweeps ended: converged to rounding (1e-14 of its impulses) within the sweeps asked
+/// for, or only to the looser 1e-9 in the sweeps allowed beyond them (a chain of faces whose change crawls
+/// one face a sweep meets that without holding: such an island is still solved at once, sticking_solve.hpp).
+constexpr char kConvergedInSweeps = 1;
+constexpr char kConvergedBeyond = 2;
+
 class LaneContactSolver {
  public:
   LaneContactSolver();
@@ -36,8 +42,8 @@ class LaneContactSolver {
   /// The velocity sweeps of `count` islands (ranges of the lists over disjoint runs of bodies, whose union
   /// is one run), their contacts prepared by prepareContacts: each island sweeps until its own impulses
   /// converge or its sweeps (as solveVelocities counts them) run out, colour by colour. Sets converged[i]
-  /// as solveVelocities returns it, each contact's impulses and slip_squared and each body's v and w (not
-  /// dP and dL: sumImpulses).
+  /// (kConvergedInSweeps, kConvergedBeyond or 0; nonzero where solveVelocities returns true), each
+  /// contact's impulses and slip_squared and each body's v and w (not dP and dL: sumImpulses).
   void solve(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options,
              const SolveRange* islands, std::size_t count, char* converged, const LaneSettings& lanes);
 

@@ -59,7 +59,9 @@ bool solveRestingContacts(std::vector<SolverContact>& contacts, std::vector<Solv
   lanes.solve(contacts, bodies, settings.options, &range, 1, &converged, settings.lanes);
   StickingScratch scratch;
   const double sliding = slidingSpeed(settings);
-  if (!converged && solveStickingIsland(contacts, bodies, range, settings.options.dt, sliding, scratch)) converged = 1;
+  if (converged != kConvergedInSweeps && solveStickingIsland(contacts, bodies, range, settings.options.dt, sliding, scratch)) {
+    converged = kConvergedInSweeps;
+  }
   finishRestingContacts(contacts, bodies, settings, range, lift_share);
   return converged != 0;
 }
@@ -188,11 +190,12 @@ void SolverIslands::solve(std::vector<SolverContact>& contacts, std::vector<Solv
     }
     block_solvers_[block].solve(contacts, bodies, shared.options, ranges_.data() + begin, end - begin,
                                 island_converged_.data() + begin, shared.lanes);
-    for (std::size_t island = begin; island < end; ++island) {  // what the sweeps left unconverged, at once
-      if (island_converged_[island]) continue;
+    // What the sweeps left unconverged, or converged only beyond the sweeps asked for, at once.
+    for (std::size_t island = begin; island < end; ++island) {
+      if (island_converged_[island] == kConvergedInSweeps) continue;
       const bool solved = solveStickingIsland(contacts, bodies, ranges_[island], shared.options.dt,
                                               slidingSpeed(shared), block_sticking_[block]);
-      island_converged_[island] = solved ? 1 : 0;
+      if (solved) island_converged_[island] = kConvergedInSweeps;
     }
     for (std::size_t island = begin; island < end; ++island) {
       finishRestingContacts(contacts, bodies, shared, ranges_[island], lift_share_);

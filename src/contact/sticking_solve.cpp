@@ -33,6 +33,8 @@ constexpr std::size_t kMostPoints = 256;
 constexpr double kNearlyHeld = 1e-13;
 // Islands of up to this many rows are solved in a dense matrix.
 constexpr std::size_t kMostDenseRows = 48;
+// A friction impulse at least this fraction of the disc's radius μ fₙ is at its edge (sliding).
+constexpr double kDiscEdge = 1.0 - 1e-3;
 
 // A point still apart (by more than kRestingDepth) that the sweeps left unpressed: a speculative point, or a
 // corner of a face that has not come down. It is no row: held to its closing speed as an equality it would
@@ -170,52 +172,79 @@ bool leftOutHold(const std::vector<SolverContact>& contacts, const std::vector<S
 }
 
 // Whether some point of a pair that already touched slipped, in the sweeps' last friction update, faster
-// than `sliding_speed`: it slides, and the island would not stick (a pile while it falls: trying it there
-// cost a third again of the pile's step, and was refused). A new contact's slip says nothing yet: its sweeps
-// started cold, and a twisted tower placed at rest had its first step at h = 10 ms left unconverged by them
-// and refused the solve for that slip; it rocked by 60 mm ever after.
+// than `sliding_speed` with its friction at the disc's edge: it slides, and the island would not stick (a
+// pile while it falls: trying it there cost a third again of the pile's step, and was refused). A new
+// contact's slip says nothing yet: its sweeps started cold, and a twisted tower placed at rest had its first
+// step at h = 10 ms left unconverged by them and refused the solve for that slip; it rocked by 60 mm ever
+// after. Nor does a slip with friction to spare: it is what unconverged sweeps leave, and grows with g h (a
+// tower of fifteen cubes set off by 5 mm, at h = 20 ms, slipped just beyond the bound at one corner, was
+// refused, and fell).
 bool sliding(const std::vector<SolverContact>& contacts, const SolveRange& range, double sliding_speed) {
   for (std::size_t k = range.contact_begin; k < range.contact_end; ++k) {
-    if (contacts[k].sustained && contacts[k].slip_squared > sliding_speed * sliding_speed) return true;
+    const SolverContact& c = contacts[k];
+    const double edge = kDiscEdge * c.friction * c.normal_impulse;
+    if (c.sustained && c.slip_squared > sliding_speed * sliding_speed &&
+        c.friction_impulse.squaredNorm() >= edge * edge) {
+      return true;
+    }
   }
   return false;
 }
 
-// The impulses themselves, not their change, are solved for: K λ = K λ₀ + (target − v) =: b. The least-norm λ
-// drops whatever the sweeps left in K's null space (a face's corners pushing against each other), and
-// spreads a face's load as evenly as its balance allows. K + shift 1 factored once, then refined (above).
+// K x = b in the least-squares sense, least-norm: x = K⁺ b. (K + shift 1) is factored once, and refined
+// (above). b need not lie in K's range: targets no rigid motion meets (a face's points asking to close by
+// different gaps, or rounding) have a part outside it, which (K + ε k̄ 1)⁻¹ multiplies by 1/(ε k̄) (a 1 kg box
+// in a tower got −1 060 N s). So the first solution y is mapped back into the range, K y (the nearest b K can
+// reach), and that is solved.
 template <class Factor, class Coupling>
-void refine(const Factor& factor, const Coupling& K, const Eigen::VectorXd& now, const Eigen::VectorXd& residual,
-            Eigen::VectorXd& next) {
-  const Eigen::VectorXd wanted = K * now + residual;
-  next = factor.solve(wanted);
-  for (int refinement = 0; refinement < kRefinements; ++refinement) next += factor.solve(wanted - K * next);
+Eigen::VectorXd leastSquares(const Factor& factor, const Coupling& K, const Eigen::VectorXd& wanted) {
+  const auto refined = [&](const Eigen::VectorXd& b) {
+    Eigen::VectorXd x = factor.solve(b);
+    for (int refinement = 0; refinement < kRefinements; ++refinement) x += factor.solve(b - K * x);
+    return x;
+  };
+  return refined(K * refined(wanted));
+}
+
+// Impulses that give the island the velocities its rows ask for, K λ = K λ₀ + (target − v) =: b, and that
+// `accept` takes. Every λ of λ* + null(K) gives the same velocities; the statics of a face on four points (or a
+// box on two) is indeterminate, and only some of them push and hold within every friction disc. First the
+// least-norm λ* = K⁺ b: it drops whatever the sweeps left in K's null space (a face's corners pushing against
+// each other) and spreads a face's load as evenly as its balance allows. Then the least change from the
+// sweeps' own impulses, λ₀ + K⁺ (target − v): they are within their discs, and where a box rests across two
+// others λ* asked one corner for five times its friction (a pyramid of five rows at h = 10 ms crept 0.07 mm).
+template <class Factor, class Coupling, class Accept>
+bool solveImpulses(const Factor& factor, const Coupling& K, const Eigen::VectorXd& now, const Eigen::VectorXd& residual,
+                   const Accept& accept, Eigen::VectorXd& next) {
+  next = leastSquares(factor, K, K * now + residual);
+  if (next.allFinite() && accept(next)) return true;
+  next = now + leastSquares(factor, K, residual);
+  return next.allFinite() && accept(next);
 }
 
 // A small island in a dense matrix (a body resting alone on two or three points needs no sparse machinery),
 // a larger one in a sparse one; K's lower triangle given as triplets, summed where they repeat.
-bool leastNormDense(const std::vector<Eigen::Triplet<double>>& entries, double shift, const Eigen::VectorXd& now,
-                    const Eigen::VectorXd& residual, Eigen::VectorXd& next) {
+template <class Accept>
+bool solveDense(const std::vector<Eigen::Triplet<double>>& entries, double shift, const Eigen::VectorXd& now,
+                const Eigen::VectorXd& residual, const Accept& accept, Eigen::VectorXd& next) {
   const Eigen::Index size = now.size();
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(size, size);
   for (const Eigen::Triplet<double>& e : entries) K(e.row(), e.col()) += e.value();
   K.triangularView<Eigen::StrictlyUpper>() = K.transpose();
   const Eigen::LDLT<Eigen::MatrixXd> factor(K + shift * Eigen::MatrixXd::Identity(size, size));
-  if (factor.info() != Eigen::Success) return false;
-  refine(factor, K, now, residual, next);
-  return true;
+  return factor.info() == Eigen::Success && solveImpulses(factor, K, now, residual, accept, next);
 }
-bool leastNormSparse(std::vector<Eigen::Triplet<double>>& entries, double shift, const Eigen::VectorXd& now,
-                     const Eigen::VectorXd& residual, Eigen::VectorXd& next) {
+template <class Accept>
+bool solveSparse(std::vector<Eigen::Triplet<double>>& entries, double shift, const Eigen::VectorXd& now,
+                 const Eigen::VectorXd& residual, const Accept& accept, Eigen::VectorXd& next) {
   const Eigen::Index size = now.size();
   Eigen::SparseMatrix<double> K(size, size), regular(size, size);
   K.setFromTriplets(entries.begin(), entries.end());
   for (Eigen::Index i = 0; i < size; ++i) entries.emplace_back(i, i, shift);
   regular.setFromTriplets(entries.begin(), entries.end());
   const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> factor(regular);
-  if (factor.info() != Eigen::Success) return false;
-  refine(factor, K.selfadjointView<Eigen::Lower>(), now, residual, next);
-  return true;
+  return factor.info() == Eigen::Success &&
+         solveImpulses(factor, K.selfadjointView<Eigen::Lower>(), now, residual, accept, next);
 }
 
 // Whether every row already holds to what rounding leaves the sweeps: each point's normal and slip
@@ -250,10 +279,11 @@ bool solveStickingIsland(std::vector<SolverContact>& contacts, std::vector<Solve
   assembleCoupling(contacts, bodies, range, scratch, diagonal);
   rowResiduals(contacts, bodies, range, dt, scratch, residual, now);
   const double shift = kRegularisation * diagonal.mean();  // the same on every row: the least norm is Euclidean
+  const auto accept = [&](const Eigen::VectorXd& impulses) { return admissible(contacts, range, scratch, impulses); };
   Eigen::VectorXd next;
-  const bool solved = rows <= kMostDenseRows ? leastNormDense(scratch.entries, shift, now, residual, next)
-                                             : leastNormSparse(scratch.entries, shift, now, residual, next);
-  if (!solved || !next.allFinite() || !admissible(contacts, range, scratch, next)) return false;
+  const bool solved = rows <= kMostDenseRows ? solveDense(scratch.entries, shift, now, residual, accept, next)
+                                             : solveSparse(scratch.entries, shift, now, residual, accept, next);
+  if (!solved) return false;
   scratch.velocities.clear();
   for (std::size_t body = range.body_begin; body < range.body_end; ++body) {
     scratch.velocities.emplace_back(bodies[body].v, bodies[body].w);

@@ -24,14 +24,16 @@ struct StickingScratch {
 };
 
 /// Solves the rows of `range` (each point's normal, and its two tangents where it has friction) as
-/// equalities, K λ = K λ₀ + target − v with K = J M⁻¹ Jᵀ (every point pushing and sticking), for the
-/// least-norm impulses λ, and applies them if every point's normal impulse is at or above its floor and its
-/// friction within μ times it. A point apart by more than 1e-9 m that the sweeps left unpressed is no row;
-/// the result is kept only if it then closes no more than its gap within the step `dt` [s]. True if applied.
-/// Not tried (false) for more than 256 points, where a point of a pair that already touched slipped faster
-/// than `sliding_speed` [m/s] in the sweeps' last friction update, or where every row already holds to 1e-13
-/// of the island's impulses. K is singular (a face of four points has twelve rows and six degrees of
-/// freedom): docs/references.md §4.16.
+/// equalities, K λ = K λ₀ + target − v with K = J M⁻¹ Jᵀ (every point pushing and sticking), in the
+/// least-squares sense (targets no rigid motion meets get the nearest velocities), and applies the first of
+/// two solutions that keeps every point's normal impulse at or above its floor and its friction within μ
+/// times it: the least-norm impulses, else the least change from the sweeps' impulses λ₀. A point apart by
+/// more than 1e-9 m that the sweeps left unpressed is no row; the result is kept only if it then closes no
+/// more than its gap within the step `dt` [s]. True if applied. Not tried (false) for more than 256 points,
+/// where a point of a pair that already touched slipped faster than `sliding_speed` [m/s] in the sweeps'
+/// last friction update with its friction at the disc's edge, or where every row already holds to 1e-13 of
+/// the island's impulses. K is singular (a face of four points has twelve rows and six degrees of freedom):
+/// docs/references.md §4.16.
 /// A point shallower than half the resting depth (1e-9 m) is sunk to it within the step.
 bool solveStickingIsland(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range,
                          double dt, double sliding_speed, StickingScratch& scratch);

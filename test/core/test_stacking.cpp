@@ -111,8 +111,11 @@ TEST(Stacking, ATowerOfFiftyAndTwistedTowersOfThirtyAndFortyStand) {
 
 // Coarse steps: each step's free motion sinks a resting face by g h²/2 (0.5 mm at h = 10 ms, 2 mm at 20 ms,
 // beyond the slop) before the solve stops it, and a tower placed face on face at zero depth is a chain of
-// contacts at rounding's edge. Towers of ten are held to the stack's target (0.01 mm over 10 s), one of
-// twenty at h = 10 ms to the tall towers' 1 mm (at 20 ms it leans away and falls: docs/contact.md). Before: boxes touching to rounding had no contact (the box–box detector
+// contacts at rounding's edge. Towers of ten are held to the stack's target (0.01 mm over 10 s), of twenty
+// to the tall towers' 1 mm. Before: a tower of twenty at h = 20 ms leaned away from rounding's 1e-16 rad,
+// e-fold every 27 steps, and fell after 9 s: its sweeps met their loose tolerance beyond the sweeps asked
+// for, which counted as converged, and the island was never solved at once. Before that: boxes touching to
+// rounding had no contact (the box–box detector
 // reported overlap only) and the tower fell through itself a face per step (4 mm at h = 10 ms); a face's
 // corner clipped where two sides of equal faces cross at rounding's angle jumped along its edge and lost its
 // warm start (ten 1 m cubes collapsed after 8 s); a box's speculative top corners made the island solve's
@@ -124,7 +127,24 @@ TEST(Stacking, TowersPlacedFaceOnFaceStandAtCoarseSteps) {
   }
   EXPECT_LE(towerTopMovement(0.25 * cube, std::vector<double>(10, 0.02), 0.0, 0.0, 10.0, 0.01), 1e-5) << "5 cm";
   EXPECT_LE(towerTopMovement(5.0 * cube, std::vector<double>(10, 100.0), 0.0, 0.0, 10.0, 0.01), 1e-5) << "1 m";
-  EXPECT_LE(towerTopMovement(cube, std::vector<double>(20, 1.0), 0.0, 0.0, 10.0, 0.01), 1e-3) << "twenty, 10 ms";
+  for (const double h : {0.01, 0.02}) {
+    EXPECT_LE(towerTopMovement(cube, std::vector<double>(20, 1.0), 0.0, 0.0, 10.0, h), 1e-3) << "twenty, h " << h;
+  }
+}
+
+// Towers whose boxes are set off sideways (by up to 5 mm or 1 cm, each box's load off its face's centre) at
+// h = 20 ms, held to the tall towers' 1 mm over 10 s. Before, each fell within its first 0.5 s: the sweeps,
+// unconverged in 20 sweeps of a chain at g h = 0.2 m/s a step, left one corner slipping just faster than a
+// tenth of the slop per step with its friction far from the disc's edge, and that slip counted as sliding,
+// so the island was never solved at once.
+TEST(Stacking, TowersSetOffStandAtCoarseSteps) {
+  const Eigen::Vector3d cube(0.2, 0.2, 0.2);
+  std::vector<double> alternating;
+  for (int i = 0; i < 20; ++i) alternating.push_back(i % 2 == 0 ? 1.0 : 10.0);
+  EXPECT_LE(towerTopMovement(cube, std::vector<double>(15, 1.0), 0.0, 0.005, 10.0, 0.02), 1e-3) << "fifteen";
+  EXPECT_LE(towerTopMovement(cube, std::vector<double>(30, 1.0), 0.0, 0.01, 10.0, 0.02), 1e-3) << "thirty";
+  EXPECT_LE(towerTopMovement(cube, alternating, 0.0, 0.005, 10.0, 0.02), 1e-3) << "1 and 10 kg";
+  EXPECT_LE(towerTopMovement(cube, std::vector<double>(20, 1.0), 0.5, 0.005, 10.0, 0.02), 1e-3) << "0.5 rad";
 }
 
 // Twisted towers at coarse steps: each face an octagon of corners at one depth to rounding, of which four
