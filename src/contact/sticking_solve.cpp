@@ -35,6 +35,9 @@ constexpr double kNearlyHeld = 1e-13;
 constexpr std::size_t kMostDenseRows = 48;
 // A friction impulse at least this fraction of the disc's radius μ fₙ is at its edge (sliding).
 constexpr double kDiscEdge = 1.0 - 1e-3;
+// A slip below this fraction of the largest normal speed a point's own impulse makes in the island
+// (fₙ / m_n) may be what unconverged sweeps leave (sliding).
+constexpr double kUnconvergedSlip = 0.1;
 
 // A point still apart (by more than kRestingDepth) that the sweeps left unpressed: a speculative point, or a
 // corner of a face that has not come down. It is no row: held to its closing speed as an equality it would
@@ -180,11 +183,16 @@ bool leftOutHold(const std::vector<SolverContact>& contacts, const std::vector<S
 // tower of fifteen cubes set off by 5 mm, at h = 20 ms, slipped just beyond the bound at one corner, was
 // refused, and fell).
 bool sliding(const std::vector<SolverContact>& contacts, const SolveRange& range, double sliding_speed) {
+  double pushed = 0.0;  // the largest normal speed a point's own impulse makes, fₙ / m_n
+  for (std::size_t k = range.contact_begin; k < range.contact_end; ++k) {
+    pushed = std::max(pushed, contacts[k].normal_impulse / contacts[k].normal_mass);
+  }
+  const double bound = std::max(sliding_speed, kUnconvergedSlip * pushed);
   for (std::size_t k = range.contact_begin; k < range.contact_end; ++k) {
     const SolverContact& c = contacts[k];
     const double edge = kDiscEdge * c.friction * c.normal_impulse;
-    if (c.sustained && c.slip_squared > sliding_speed * sliding_speed &&
-        c.friction_impulse.squaredNorm() >= edge * edge) {
+    if (c.sustained && c.friction_impulse.squaredNorm() >= edge * edge &&
+        c.slip_squared > bound * bound) {
       return true;
     }
   }

@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 #include <Eigen/QR>
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -231,23 +232,31 @@ TEST(StickingSolve, AnIslandThatWouldPullOrSlideIsLeftAsItWas) {
   }
 }
 
-// An island one of whose points slipped faster than the sliding speed in the sweeps' last update, its
-// friction at the disc's edge, is not tried, though it could stick: it is sliding, and the sweeps' result
-// stands. The same slip with friction to spare is what unconverged sweeps leave, and is tried. Nor is an
+// An island one of whose points slipped, in the sweeps' last update, faster than the sliding speed and
+// than a tenth of the largest normal speed a point's own impulse makes (fₙ / m_n), its friction at the
+// disc's edge, is not tried, though it could stick: it is sliding, and the sweeps' result stands. A slower
+// slip, or the same slip with friction to spare, is what unconverged sweeps leave, and is tried. Nor is an
 // island tried whose rows the sweeps left holding to rounding (1e-15 of its impulses).
 TEST(StickingSolve, AnIslandWithASlidingPointOrAlreadyHeldIsNotTried) {
   std::mt19937 random(29);
   Island island = chain(random, {4, 4}, 1e6);
-  for (SolverContact& c : island.contacts) c.normal_impulse = 10.0;
+  double pushed = 0.0;
+  for (SolverContact& c : island.contacts) c.normal_impulse = 10.0, pushed = std::max(pushed, 10.0 / c.normal_mass);
+  ASSERT_GT(0.1 * pushed, kSliding);
   island.bodies[2].v = Eigen::Vector3d(0.001, 0.0, 0.0);
   StickingScratch scratch;
-  for (const double share_of_disc : {1.0, 0.99}) {
+  struct Case {
+    double share_of_disc, slip;
+    bool tried;
+  };
+  for (const Case& c : {Case{1.0, 1.1 * 0.1 * pushed, false}, Case{0.99, 1.1 * 0.1 * pushed, true},
+                        Case{1.0, 0.9 * 0.1 * pushed, true}}) {
     Island sliding = island;
     sliding.contacts[5].friction = 0.5;
-    sliding.contacts[5].friction_impulse = Eigen::Vector2d(share_of_disc * 0.5 * 10.0, 0.0);
-    sliding.contacts[5].slip_squared = 1.1 * kSliding * kSliding;
+    sliding.contacts[5].friction_impulse = Eigen::Vector2d(c.share_of_disc * 0.5 * 10.0, 0.0);
+    sliding.contacts[5].slip_squared = c.slip * c.slip;
     const bool tried = solveStickingIsland(sliding.contacts, sliding.bodies, SolveRange::all(8, 3), 1e-3, kSliding, scratch);
-    EXPECT_EQ(tried, share_of_disc < 1.0) << share_of_disc;
+    EXPECT_EQ(tried, c.tried) << c.share_of_disc << " " << c.slip;
     if (!tried) EXPECT_EQ(velocities(sliding), velocities(island));
   }
   island.contacts[5].slip_squared = 0.9 * kSliding * kSliding;
