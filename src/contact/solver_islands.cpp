@@ -59,7 +59,8 @@ bool solveRestingContacts(std::vector<SolverContact>& contacts, std::vector<Solv
   lanes.solve(contacts, bodies, settings.options, &range, 1, &converged, settings.lanes);
   StickingScratch scratch;
   const double sliding = slidingSpeed(settings);
-  if (converged != kConvergedInSweeps && solveStickingIsland(contacts, bodies, range, settings.options.dt, sliding, scratch)) {
+  if (converged != kConvergedInSweeps &&
+      solveStickingIsland(contacts, bodies, range, settings.options.dt, sliding, scratch)) {
     converged = kConvergedInSweeps;
   }
   finishRestingContacts(contacts, bodies, settings, range, lift_share);

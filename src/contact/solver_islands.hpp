@@ -36,9 +36,8 @@ struct RestingSolveSettings {
 
 /// The impulses of the resting solve on `range`, with the moves they make: the velocity sweeps (in lanes,
 /// lane_contact_solver.hpp) and, where they did not converge within the sweeps asked for, the island
-/// solved at once if it sticks
-/// (sticking_solve.hpp), the move by move_weight Δv, the limit on how far that lifts a contact made
-/// within the step, then the position projection. `lift_share` has an entry per body (scratch; only the
+/// solved at once if it sticks (sticking_solve.hpp), the move by move_weight Δv, the limit on how far that
+/// lifts a contact made within the step, then the position projection. `lift_share` has an entry per body (scratch; only the
 /// range's are written). Returns whether the velocity solve converged (in its sweeps or at once).
 bool solveRestingContacts(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies,
                           const RestingSolveSettings& settings, const SolveRange& range,

@@ -179,8 +179,10 @@ bool leftOutHold(const std::vector<SolverContact>& contacts, const std::vector<S
 // pile while it falls: trying it there cost a third again of the pile's step, and was refused). A new
 // contact's slip says nothing yet: its sweeps started cold, and a twisted tower placed at rest had its first
 // step at h = 10 ms left unconverged by them and refused the solve for that slip; it rocked by 60 mm ever
-// after. Nor does a slip with friction to spare: it is what unconverged sweeps leave, and grows with g h (a
-// tower of fifteen cubes set off by 5 mm, at h = 20 ms, slipped just beyond the bound at one corner, was
+// after. Nor does a slip with friction to spare, or one below a tenth of the largest normal speed a point's
+// impulse makes in the island: unconverged sweeps leave such slips, of the order of g h (a tower of fifteen
+// cubes set off by 5 mm, at h = 20 ms, slipped just beyond `sliding_speed` at one corner with friction to
+// spare; a tower of standing cylinders had a rim point at its disc's edge slipping at 2–7 mm/s; both were
 // refused, and fell).
 bool sliding(const std::vector<SolverContact>& contacts, const SolveRange& range, double sliding_speed) {
   double pushed = 0.0;  // the largest normal speed a point's own impulse makes, fₙ / m_n

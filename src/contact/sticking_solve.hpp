@@ -30,8 +30,9 @@ struct StickingScratch {
 /// times it: the least-norm impulses, else the least change from the sweeps' impulses λ₀. A point apart by
 /// more than 1e-9 m that the sweeps left unpressed is no row; the result is kept only if it then closes no
 /// more than its gap within the step `dt` [s]. True if applied. Not tried (false) for more than 256 points,
-/// where a point of a pair that already touched slipped faster than `sliding_speed` [m/s] in the sweeps'
-/// last friction update with its friction at the disc's edge, or where every row already holds to 1e-13 of
+/// where a point of a pair that already touched slipped in the sweeps' last friction update with its
+/// friction at the disc's edge, faster than `sliding_speed` [m/s] and than a tenth of the largest normal
+/// speed a point's impulse makes in the island (fₙ / m_n), or where every row already holds to 1e-13 of
 /// the island's impulses. K is singular (a face of four points has twelve rows and six degrees of freedom):
 /// docs/references.md §4.16.
 /// A point shallower than half the resting depth (1e-9 m) is sunk to it within the step.
