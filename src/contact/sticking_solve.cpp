@@ -33,6 +33,8 @@ constexpr std::size_t kMostPoints = 256;
 constexpr double kNearlyHeld = 1e-13;
 // Islands of up to this many rows are solved in a dense matrix.
 constexpr std::size_t kMostDenseRows = 48;
+// Solves of an island, each after letting go of the points that pulled in the one before (letGoOfPulling).
+constexpr int kMostRounds = 3;
 // A friction impulse at least this fraction of the disc's radius μ fₙ is at its edge (sliding).
 constexpr double kDiscEdge = 1.0 - 1e-3;
 // A slip below this fraction of the largest normal speed a point's own impulse makes in the island
@@ -47,13 +49,13 @@ constexpr double kUnconvergedSlip = 0.1;
 bool leftOut(const SolverContact& c) { return c.separation > kRestingDepth && c.normal_impulse == 0.0; }
 
 // The rows: each point's normal, and its tangents where it has friction (without, they keep their zero);
-// none for a point left out.
+// none for a point left out or let go (s.let_go).
 std::size_t numberRows(const std::vector<SolverContact>& contacts, const SolveRange& range, StickingScratch& s) {
   const std::size_t points = range.contact_end - range.contact_begin;
   s.row_of.assign(3 * points, kNoRow);
   s.contact.clear();
   for (std::size_t k = 0; k < points; ++k) {
-    if (leftOut(contacts[range.contact_begin + k])) continue;
+    if (s.let_go[k] || leftOut(contacts[range.contact_begin + k])) continue;
     for (std::size_t d = 0; d < 3; ++d) {
       if (d > 0 && !(contacts[range.contact_begin + k].friction > 0.0)) continue;
       s.row_of[3 * k + d] = s.contact.size();
@@ -142,36 +144,60 @@ bool admissible(const std::vector<SolverContact>& contacts, const SolveRange& ra
   return true;
 }
 
-// The impulses become `next`, and the bodies' velocities change by what they add.
+// A point's impulses (normal, two tangents) become `after`, and its bodies' velocities change by what that adds.
+void changeImpulses(SolverContact& c, std::vector<SolverBody>& bodies, const Eigen::Vector3d& after) {
+  const Eigen::Vector3d change = after - Eigen::Vector3d(c.normal_impulse, c.friction_impulse.x(), c.friction_impulse.y());
+  c.normal_impulse = after.x();
+  c.friction_impulse = after.tail<2>();
+  const Eigen::Vector3d linear = change.x() * c.n + change.y() * c.t1 + change.z() * c.t2;
+  if (c.a != kEnvironment) bodies[c.a].v += bodies[c.a].inverse_mass * linear, bodies[c.a].w += c.response_a * change;
+  if (c.b != kEnvironment) bodies[c.b].v -= bodies[c.b].inverse_mass * linear, bodies[c.b].w -= c.response_b * change;
+}
+
+// The impulses of the points with rows become `next`.
 void applyImpulses(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range,
                    const StickingScratch& s, const Eigen::VectorXd& next) {
   for (std::size_t k = 0; k < range.contact_end - range.contact_begin; ++k) {
     SolverContact& c = contacts[range.contact_begin + k];
-    const Eigen::Vector3d before(c.normal_impulse, c.friction_impulse.x(), c.friction_impulse.y());
-    Eigen::Vector3d after = before;
+    Eigen::Vector3d after(c.normal_impulse, c.friction_impulse.x(), c.friction_impulse.y());
     for (std::size_t d = 0; d < 3; ++d) {
       const std::size_t row = s.row_of[3 * k + d];
       if (row != kNoRow) after[static_cast<Eigen::Index>(d)] = next[static_cast<Eigen::Index>(row)];
     }
-    const Eigen::Vector3d change = after - before;
-    c.normal_impulse = after.x();
-    c.friction_impulse = after.tail<2>();
-    const Eigen::Vector3d linear = change.x() * c.n + change.y() * c.t1 + change.z() * c.t2;
-    if (c.a != kEnvironment) bodies[c.a].v += bodies[c.a].inverse_mass * linear, bodies[c.a].w += c.response_a * change;
-    if (c.b != kEnvironment) bodies[c.b].v -= bodies[c.b].inverse_mass * linear, bodies[c.b].w -= c.response_b * change;
+    changeImpulses(c, bodies, after);
   }
 }
 
-// Whether every point left out closes, after the solve, no faster than its target (to within the resting
-// depth of its gap in the step).
-bool leftOutHold(const std::vector<SolverContact>& contacts, const std::vector<SolverBody>& bodies,
-                 const SolveRange& range, double dt) {
+// Whether every point without rows (left out, or let go) closes, after the solve, no faster than its target
+// (to within the resting depth in the step).
+bool pointsWithoutRowsHold(const std::vector<SolverContact>& contacts, const std::vector<SolverBody>& bodies,
+                           const SolveRange& range, double dt, const StickingScratch& s) {
   const double allowance = dt > 0.0 ? kRestingDepth / dt : 0.0;
   for (std::size_t k = range.contact_begin; k < range.contact_end; ++k) {
     const SolverContact& c = contacts[k];
-    if (leftOut(c) && !(rowSpeed(c, 0, bodies[c.a], bodies[c.b]) >= c.target_speed - allowance)) return false;
+    if (!s.let_go[k - range.contact_begin] && !leftOut(c)) continue;
+    if (!(rowSpeed(c, 0, bodies[c.a], bodies[c.b]) >= c.target_speed - allowance)) return false;
   }
   return true;
+}
+
+// Points whose solved normal impulse fell below zero (they would pull) are let go: their impulses become
+// zero and the rest is solved again without them, as a point lifting off would be (the active-set step
+// for a linear complementarity problem; Murty, "Linear Complementarity, Linear and Nonlinear Programming",
+// ch. 8). A heavy box set off diagonally on a light one at coarse steps had one corner of its face whose
+// every sticking spread pulled. True if some were let go.
+bool letGoOfPulling(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range,
+                    const Eigen::VectorXd& next, StickingScratch& s) {
+  bool any = false;
+  for (std::size_t k = 0; k < range.contact_end - range.contact_begin; ++k) {
+    const std::size_t row = s.row_of[3 * k];
+    SolverContact& c = contacts[range.contact_begin + k];
+    if (row == kNoRow || c.normal_floor > 0.0 || next[static_cast<Eigen::Index>(row)] >= 0.0) continue;
+    changeImpulses(c, bodies, Eigen::Vector3d::Zero());
+    s.let_go[k] = 1;
+    any = true;
+  }
+  return any;
 }
 
 // Whether some point of a pair that already touched slipped, in the sweeps' last friction update, faster
@@ -276,35 +302,65 @@ bool nearlyHeld(const std::vector<SolverContact>& contacts, const std::vector<So
   return largest_change <= kNearlyHeld * largest_impulse;
 }
 
-}  // namespace
+// The impulses and velocities of the range as they were, for a solve that is not kept.
+void saveIsland(const std::vector<SolverContact>& contacts, const std::vector<SolverBody>& bodies,
+                const SolveRange& range, StickingScratch& s) {
+  s.velocities.clear();
+  for (std::size_t body = range.body_begin; body < range.body_end; ++body) {
+    s.velocities.emplace_back(bodies[body].v, bodies[body].w);
+  }
+  s.impulses.clear();
+  for (std::size_t k = range.contact_begin; k < range.contact_end; ++k) {
+    const SolverContact& c = contacts[k];
+    s.impulses.emplace_back(c.normal_impulse, c.friction_impulse.x(), c.friction_impulse.y());
+  }
+}
+bool restoreIsland(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range,
+                   const StickingScratch& s) {
+  for (std::size_t body = range.body_begin; body < range.body_end; ++body) {
+    std::tie(bodies[body].v, bodies[body].w) = s.velocities[body - range.body_begin];
+  }
+  for (std::size_t k = range.contact_begin; k < range.contact_end; ++k) {
+    contacts[k].normal_impulse = s.impulses[k - range.contact_begin].x();
+    contacts[k].friction_impulse = s.impulses[k - range.contact_begin].tail<2>();
+  }
+  return false;
+}
 
-bool solveStickingIsland(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range,
-                         double dt, double sliding_speed, StickingScratch& scratch) {
-  if (range.contact_end - range.contact_begin > kMostPoints) return false;
-  if (sliding(contacts, range, sliding_speed) || nearlyHeld(contacts, bodies, range)) return false;
-  const std::size_t rows = numberRows(contacts, range, scratch);
-  if (rows == 0) return false;
+// One solve of the rows as numbered: true with admissible impulses in `next`, false with the last tried.
+bool solveRows(const std::vector<SolverContact>& contacts, const std::vector<SolverBody>& bodies,
+               const SolveRange& range, double dt, std::size_t rows, StickingScratch& scratch, Eigen::VectorXd& next) {
   const auto size = static_cast<Eigen::Index>(rows);
   Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(size), residual(size), now(size);
   assembleCoupling(contacts, bodies, range, scratch, diagonal);
   rowResiduals(contacts, bodies, range, dt, scratch, residual, now);
   const double shift = kRegularisation * diagonal.mean();  // the same on every row: the least norm is Euclidean
   const auto accept = [&](const Eigen::VectorXd& impulses) { return admissible(contacts, range, scratch, impulses); };
+  return rows <= kMostDenseRows ? solveDense(scratch.entries, shift, now, residual, accept, next)
+                                : solveSparse(scratch.entries, shift, now, residual, accept, next);
+}
+
+}  // namespace
+
+bool solveStickingIsland(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range,
+                         double dt, double sliding_speed, StickingScratch& scratch) {
+  const std::size_t points = range.contact_end - range.contact_begin;
+  if (points > kMostPoints) return false;
+  if (sliding(contacts, range, sliding_speed) || nearlyHeld(contacts, bodies, range)) return false;
+  saveIsland(contacts, bodies, range, scratch);
+  scratch.let_go.assign(points, 0);
   Eigen::VectorXd next;
-  const bool solved = rows <= kMostDenseRows ? solveDense(scratch.entries, shift, now, residual, accept, next)
-                                             : solveSparse(scratch.entries, shift, now, residual, accept, next);
-  if (!solved) return false;
-  scratch.velocities.clear();
-  for (std::size_t body = range.body_begin; body < range.body_end; ++body) {
-    scratch.velocities.emplace_back(bodies[body].v, bodies[body].w);
+  for (int round = 0;; ++round) {
+    const std::size_t rows = numberRows(contacts, range, scratch);
+    if (rows == 0) return restoreIsland(contacts, bodies, range, scratch);
+    if (solveRows(contacts, bodies, range, dt, rows, scratch, next)) break;
+    if (round + 1 == kMostRounds || !next.allFinite() || !letGoOfPulling(contacts, bodies, range, next, scratch)) {
+      return restoreIsland(contacts, bodies, range, scratch);
+    }
   }
   applyImpulses(contacts, bodies, range, scratch, next);
-  if (leftOutHold(contacts, bodies, range, dt)) return true;
-  applyImpulses(contacts, bodies, range, scratch, now);  // the impulses back, and the velocities as they were
-  for (std::size_t body = range.body_begin; body < range.body_end; ++body) {
-    std::tie(bodies[body].v, bodies[body].w) = scratch.velocities[body - range.body_begin];
-  }
-  return false;
+  if (pointsWithoutRowsHold(contacts, bodies, range, dt, scratch)) return true;
+  return restoreIsland(contacts, bodies, range, scratch);
 }
 
 }  // namespace contact

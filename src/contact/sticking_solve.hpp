@@ -21,15 +21,19 @@ struct StickingScratch {
   std::vector<Eigen::Triplet<double>> entries;    // K's lower triangle
   std::vector<std::vector<std::size_t>> rows_on;  // per body of the range: its contacts, 2 k (side a) or 2 k + 1 (b)
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> velocities;  // per body of the range: (v, ω) before
+  std::vector<Eigen::Vector3d> impulses;  // per point of the range: (normal, two tangents) before
+  std::vector<char> let_go;               // per point of the range: no rows, its impulses zero
 };
 
 /// Solves the rows of `range` (each point's normal, and its two tangents where it has friction) as
 /// equalities, K λ = K λ₀ + target − v with K = J M⁻¹ Jᵀ (every point pushing and sticking), in the
 /// least-squares sense (targets no rigid motion meets get the nearest velocities), and applies the first of
 /// two solutions that keeps every point's normal impulse at or above its floor and its friction within μ
-/// times it: the least-norm impulses, else the least change from the sweeps' impulses λ₀. A point apart by
-/// more than 1e-9 m that the sweeps left unpressed is no row; the result is kept only if it then closes no
-/// more than its gap within the step `dt` [s]. True if applied. Not tried (false) for more than 256 points,
+/// times it: the least-norm impulses, else the least change from the sweeps' impulses λ₀; failing both, the
+/// points that pulled are let go (no rows, zero impulses) and the rest solved again, three solves in all. A
+/// point apart by more than 1e-9 m that the sweeps left unpressed is no row; the result is kept only if such
+/// points and those let go then close no more than their targets allow within the step `dt` [s]. True if
+/// applied. Not tried (false) for more than 256 points,
 /// where a point of a pair that already touched slipped in the sweeps' last friction update with its
 /// friction at the disc's edge, faster than `sliding_speed` [m/s] and than a tenth of the largest normal
 /// speed a point's impulse makes in the island (fₙ / m_n), or where every row already holds to 1e-13 of
