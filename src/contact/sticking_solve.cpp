@@ -353,8 +353,10 @@ bool solveStickingIsland(std::vector<SolverContact>& contacts, std::vector<Solve
   for (int round = 0;; ++round) {
     const std::size_t rows = numberRows(contacts, range, scratch);
     if (rows == 0) return restoreIsland(contacts, bodies, range, scratch);
+    next.resize(0);  // a factorisation that fails leaves it so
     if (solveRows(contacts, bodies, range, dt, rows, scratch, next)) break;
-    if (round + 1 == kMostRounds || !next.allFinite() || !letGoOfPulling(contacts, bodies, range, next, scratch)) {
+    const bool tried = next.size() == static_cast<Eigen::Index>(rows) && next.allFinite();
+    if (round + 1 == kMostRounds || !tried || !letGoOfPulling(contacts, bodies, range, next, scratch)) {
       return restoreIsland(contacts, bodies, range, scratch);
     }
   }
