@@ -6,6 +6,7 @@
 // Internal to the contact solver.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
@@ -79,6 +80,7 @@ struct alignas(64) PointLanes {
   Vec<T> cross_a[3], cross_b[3];        // r × d for d = n, t1, t2
   Vec<T> response_a[3], response_b[3];  // I⁻¹ (r × d)
   T normal_mass, tangent_mass00, tangent_mass01, tangent_mass11;
+  T tangent_response00, tangent_response01, tangent_response11;  // K of the tangents (01 symmetrised)
   T friction, target_speed, normal_floor;
   T present;  // 1 where the lane's manifold has a point in this slot, else 0 (and every other field 0)
   T normal_impulse, friction1, friction2, slip_squared;
@@ -112,10 +114,48 @@ RIGID_BODY_LANE_INLINE T laneAbs(T a) {
   return laneSelect<T>(a < 0.0, -a, a);
 }
 
-/// The friction impulse on the disc of radius `limit` for a point whose sticking impulse (f1, f2) lies
-/// outside it (friction_disc.hpp), written to f1, f2. Out of line: it is scalar code with Eigen, and the
-/// kernel may be compiled for another instruction set.
-void frictionOntoDisc(const SolverContact& contact, double limit, double& f1, double& f2);
+/// √v lane by lane (the vector extension has none; each lane's is the scalar std::sqrt, correctly rounded).
+template <class T>
+RIGID_BODY_LANE_INLINE T laneSquareRoot(T v) {
+  if constexpr (std::is_same_v<T, double>) {
+    return std::sqrt(v);
+  } else {
+    for (std::size_t i = 0; i < kLaneCount<T>; ++i) v[i] = std::sqrt(v[i]);
+    return v;
+  }
+}
+
+/// ontoFrictionDisc (friction_disc.cpp) in lanes, operation for operation, so that each lane rounds as the
+/// scalar function does: in the lanes set in `outside`, the sticking impulse (f1, f2) is replaced by its
+/// projection onto the disc |f| ≤ limit in the metric of K = [k00 k01; k01 k11] (the slip change per
+/// friction impulse, k01 its symmetrised off-diagonal); the other lanes keep theirs. Newton's iterations on
+/// the secular equation run while any lane still iterates, each lane stopping where the scalar loop would.
+template <class T>
+RIGID_BODY_LANE_INLINE void frictionOntoDiscLanes(LaneMask<T> outside, const T& k00, const T& k01, const T& k11,
+                                                  const T& limit, T& f1, T& f2) {
+  const T half_trace = 0.5 * (k00 + k11), half_gap = 0.5 * (k00 - k11);
+  const T k_min = half_trace - laneSquareRoot<T>(half_gap * half_gap + k01 * k01);
+  const T kf1 = k00 * f1 + k01 * f2, kf2 = k01 * f1 + k11 * f2;
+  const T norm = laneSquareRoot<T>(f1 * f1 + f2 * f2);
+  T lambda = laneSelect<T>(k_min > 0.0, laneMax<T>(T{}, k_min * (norm / limit - 1.0)), 1e-12 * half_trace);
+  LaneMask<T> active = outside & (limit > 0.0);
+  T g1{}, g2{}, r{};
+  for (int i = 0; i < 40 && anyLane(active); ++i) {
+    const T m00 = k00 + lambda, m11 = k11 + lambda, det = m00 * m11 - k01 * k01;
+    active = active & (det > 0.0);  // K is zero: no friction can act
+    const T inverse = 1.0 / det;
+    g1 = laneSelect<T>(active, (m11 * kf1 - k01 * kf2) * inverse, g1);
+    g2 = laneSelect<T>(active, (m00 * kf2 - k01 * kf1) * inverse, g2);
+    const T squared = g1 * g1 + g2 * g2;
+    r = laneSelect<T>(active, laneSquareRoot<T>(squared), r);
+    const T q = m11 * g1 * g1 - 2.0 * k01 * g1 * g2 + m00 * g2 * g2;
+    active = active & (r > limit * (1.0 + 1e-15)) & (q > 0.0);
+    lambda = laneSelect<T>(active, lambda + (r - limit) * squared * det / (limit * q), lambda);
+  }
+  const LaneMask<T> on_circle = outside & (limit > 0.0) & (r > 0.0);
+  f1 = laneSelect<T>(on_circle, g1 * (limit / r), laneSelect<T>(outside, T{}, f1));
+  f2 = laneSelect<T>(on_circle, g2 * (limit / r), laneSelect<T>(outside, T{}, f2));
+}
 
 template <class T>
 RIGID_BODY_LANE_INLINE void gatherVelocity(Vec<T>& v, Vec<T>& w, T& inverse_mass, const LaneBodyVelocity& body,
@@ -230,12 +270,7 @@ RIGID_BODY_LANE_INLINE void sweepGroup(ManifoldLanes<T>& g, LaneBodyVelocity* bo
     const T limit = s.friction * normal;
     const LaneMask<T> outside = on & (f1 * f1 + f2 * f2 > limit * limit);
     if (anyLane(outside)) {
-      for (std::size_t l = 0; l < g.lanes; ++l) {
-        if (!laneOn(outside, l)) continue;
-        double d1 = laneValue(f1, l), d2 = laneValue(f2, l);
-        frictionOntoDisc(contacts[g.first_contact[l] + p], laneValue(limit, l), d1, d2);
-        setLane(f1, l, d1), setLane(f2, l, d2);
-      }
+      frictionOntoDiscLanes<T>(outside, s.tangent_response00, s.tangent_response01, s.tangent_response11, limit, f1, f2);
     }
     f1 = laneSelect<T>(on, f1, s.friction1), f2 = laneSelect<T>(on, f2, s.friction2);
     const T df1 = f1 - s.friction1, df2 = f2 - s.friction2;

@@ -4,15 +4,9 @@
 #include <type_traits>
 
 #include "contact_lanes.hpp"
-#include "friction_disc.hpp"
 
 namespace rigid_body {
 namespace contact {
-
-void frictionOntoDisc(const SolverContact& contact, double limit, double& f1, double& f2) {
-  const Eigen::Vector2d f = ontoFrictionDisc(Eigen::Vector2d(f1, f2), contact.tangent_response, limit);
-  f1 = f.x(), f2 = f.y();
-}
 
 namespace {
 
@@ -34,6 +28,8 @@ void loadPoint(PointLanes<T>& s, std::size_t l, const SolverContact& c) {
   setLane(s.normal_mass, l, c.normal_mass);
   setLane(s.tangent_mass00, l, c.tangent_mass(0, 0)), setLane(s.tangent_mass01, l, c.tangent_mass(0, 1));
   setLane(s.tangent_mass11, l, c.tangent_mass(1, 1));
+  setLane(s.tangent_response00, l, c.tangent_response(0, 0)), setLane(s.tangent_response11, l, c.tangent_response(1, 1));
+  setLane(s.tangent_response01, l, 0.5 * (c.tangent_response(0, 1) + c.tangent_response(1, 0)));
   setLane(s.friction, l, c.friction), setLane(s.target_speed, l, c.target_speed);
   setLane(s.normal_floor, l, c.normal_floor), setLane(s.present, l, 1.0);
   setLane(s.normal_impulse, l, c.normal_impulse);
@@ -92,7 +88,7 @@ RIGID_BODY_LANE_INLINE void runSweeps(std::vector<ManifoldLanes<T>>& groups, Lan
 #if defined(__x86_64__) && !defined(__AVX__)
 #define RIGID_BODY_WIDE_CONTACT_LANES 1
 // The sweeps in 256-bit (AVX) and 512-bit (AVX-512) operations, for a build whose baseline (SSE2) splits each
-// into 128-bit ones. Only the lane code is inlined here; Eigen stays outside (frictionOntoDisc is a call).
+// into 128-bit ones. Only the lane code is inlined here; Eigen stays outside (invertLanes is a call).
 template <class T>
 __attribute__((noinline, target("avx"))) void runSweepsAvx(std::vector<ManifoldLanes<T>>& groups,
                                                           LaneBodyVelocity* bodies, const SolverContact* contacts,

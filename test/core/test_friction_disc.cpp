@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 
+#include "../../src/contact/contact_lanes.hpp"
 #include "../../src/contact/friction_disc.hpp"
 
 using rigid_body::contact::ontoFrictionDisc;
@@ -60,6 +61,59 @@ TEST(FrictionDisc, NoResponseAlongADirectionGivesNoImpulseAlongIt) {
   EXPECT_NEAR(f.y(), 0.0, 1e-9);
   EXPECT_EQ(ontoFrictionDisc(Eigen::Vector2d(3.0, 4.0), Eigen::Matrix2d::Zero(), 1.0), Eigen::Vector2d::Zero());
   EXPECT_EQ(ontoFrictionDisc(Eigen::Vector2d(3.0, 4.0), K, 0.0), Eigen::Vector2d::Zero());
+}
+
+// The lane solver's projection (contact_lanes.hpp) against this file's scalar function, bit for bit, in one,
+// four and eight lanes: random lanes outside the disc and inside it (kept), anisotropy to 10⁶, K singular or
+// zero, limits of zero, and sticking impulses from just outside the disc (many Newton steps) to far outside.
+// Catches a lane form that rounds otherwise (a reordered product, a reciprocal for a division), that stops
+// a lane before or after the scalar loop would, or that lets one lane's iterations change another's result.
+template <class T>
+void expectLanesMatchTheScalarProjection(unsigned seed) {
+  using rigid_body::contact::frictionOntoDiscLanes;
+  using rigid_body::contact::LaneMask;
+  using rigid_body::integrators::laneValue;
+  using rigid_body::integrators::setLane;
+  constexpr std::size_t kWidth = rigid_body::integrators::kLaneCount<T>;
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 5000; ++trial) {
+    T k00{}, k01{}, k11{}, limit{}, f1{}, f2{};
+    LaneMask<T> outside{};
+    Eigen::Matrix2d K[kWidth];
+    for (std::size_t l = 0; l < kWidth; ++l) {
+      const double k1 = std::pow(10.0, -2.0 + 4.0 * unit(random));
+      const double kind = unit(random);
+      const double k2 = kind < 0.1 ? 0.0 : k1 * std::pow(10.0, 6.0 * unit(random) - 3.0);
+      K[l] = kind < 0.15 ? Eigen::Matrix2d::Zero() : response(k1, k2, 6.3 * unit(random));
+      K[l](0, 1) *= 1.0 + 1e-15 * (unit(random) - 0.5);  // as prepared: symmetric only to rounding
+      const double radius = unit(random) < 0.05 ? 0.0 : std::pow(10.0, -3.0 + 4.0 * unit(random));
+      const double scale = unit(random) < 0.5 ? 1.0 + 1e-9 * unit(random) : std::pow(10.0, 3.0 * unit(random));
+      const double angle = 6.3 * unit(random);
+      const bool on = unit(random) < 0.7;
+      rigid_body::contact::setMaskLane(outside, l, on);
+      setLane(k00, l, K[l](0, 0)), setLane(k01, l, 0.5 * (K[l](0, 1) + K[l](1, 0))), setLane(k11, l, K[l](1, 1));
+      setLane(limit, l, radius);
+      setLane(f1, l, std::max(radius, 1e-3) * scale * std::cos(angle));
+      setLane(f2, l, std::max(radius, 1e-3) * scale * std::sin(angle));
+    }
+    const T before1 = f1, before2 = f2;
+    frictionOntoDiscLanes<T>(outside, k00, k01, k11, limit, f1, f2);
+    for (std::size_t l = 0; l < kWidth; ++l) {
+      const Eigen::Vector2d sticking(laneValue(before1, l), laneValue(before2, l));
+      const Eigen::Vector2d expected = rigid_body::contact::laneOn(outside, l)
+                                           ? ontoFrictionDisc(sticking, K[l], laneValue(limit, l))
+                                           : sticking;
+      ASSERT_EQ(laneValue(f1, l), expected.x()) << "trial " << trial << ", lane " << l;
+      ASSERT_EQ(laneValue(f2, l), expected.y()) << "trial " << trial << ", lane " << l;
+    }
+  }
+}
+
+TEST(FrictionDisc, TheLaneFormProjectsToTheBitsOfTheScalarFunction) {
+  expectLanesMatchTheScalarProjection<double>(5);
+  expectLanesMatchTheScalarProjection<rigid_body::integrators::Lanes>(6);
+  expectLanesMatchTheScalarProjection<rigid_body::contact::EightLanes>(7);
 }
 
 }  // namespace
