@@ -2,12 +2,13 @@
 // docs/performance_log.md): 0.2 m cubes of 1 kg, μ = 0.5, on the ground, rk4 at h = 1 ms, sleeping off.
 // After 0.5 s of settling, prints once a second (every 5 s after the first 10) the top cube's lateral and
 // vertical displacement, the largest displacement of any cube, and the tower's lean: the largest tilt of a
-// cube and the sum of the tilts [rad].
+// cube and the sum of the tilts [rad]. H sets another step (coarse steps: docs/contact.md, step 5), and
+// ITERATIONS_DT (in the environment) contact/iterations_dt.
 //
 // A twisted tower is a tower whose cubes are each turned about the vertical by 0.7 i rad and set off sideways
 // by up to 5 mm (no symmetry left for the solver to keep).
 //
-// Usage: tower_drift tower|twisted|pyramid [CUBES or ROWS = 50] [SECONDS = 60] [SWEEPS = 20] [SLOP = 1e-4]
+// Usage: tower_drift tower|twisted|pyramid [CUBES or ROWS = 50] [SECONDS = 60] [SWEEPS = 20] [SLOP = 1e-4] [H = 1e-3]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -34,6 +35,9 @@ int main(int argc, char** argv) {
   setup.settings.iterations = argc > 4 ? std::atoi(argv[4]) : setup.settings.iterations;
   setup.settings.penetration_slop = argc > 5 ? std::atof(argv[5]) : setup.settings.penetration_slop;
   setup.settings.sleep = false;
+  const double h = argc > 6 ? std::atof(argv[6]) : 1e-3;
+  if (const char* iterations_dt = std::getenv("ITERATIONS_DT")) setup.settings.iterations_dt = std::atof(iterations_dt);
+  const auto steps = [&](double seconds_to_step) { return std::llround(seconds_to_step / h); };
   std::vector<BodyDefinition> cubes;
   const auto add = [&](const Eigen::Vector3d& p, double yaw = 0.0) {
     cubes.push_back(reference::contactBody(MassProperties::box(1.0, Eigen::Vector3d::Constant(side)), p,
@@ -53,15 +57,16 @@ int main(int argc, char** argv) {
       add(offset + Eigen::Vector3d(0.0, 0.0, side * (i + 0.5)), twisted ? 0.7 * i : 0.0);
     }
   }
-  Scene scene(cubes, IntegratorType::kRk4, 1e-3, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
-  scene.step(500);
+  Scene scene(cubes, IntegratorType::kRk4, h, IntegratorSettings(), StepAssembly::kLeaveOut, setup);
+  scene.step(steps(0.5));
   std::vector<Eigen::Vector3d> settled;
   for (std::size_t i = 0; i < cubes.size(); ++i) settled.push_back(scene.state(i).p_WB);
-  std::printf("%s of %d, %d sweeps, slop %g m; from 0.5 s on:\n", pyramid ? "pyramid" : twisted ? "twisted tower" : "tower", size,
-              setup.settings.iterations, setup.settings.penetration_slop);
+  std::printf("%s of %d, %d sweeps (%d a step at h = %g s), slop %g m; from 0.5 s on:\n",
+              pyramid ? "pyramid" : twisted ? "twisted tower" : "tower", size, setup.settings.iterations,
+              sweepsPerStep(setup.settings, h), h, setup.settings.penetration_slop);
   const auto start = std::chrono::steady_clock::now();
   for (int s = 1; s <= seconds; ++s) {
-    scene.step(1000);
+    scene.step(steps(1.0));
     if (s > 10 && s % 5 != 0) continue;
     double largest = 0.0, tilt_max = 0.0, tilt_sum = 0.0;
     for (std::size_t i = 0; i < cubes.size(); ++i) {

@@ -17,6 +17,9 @@ namespace rigid_body {
 /// The contact solver's settings (docs/contact.md explains each).
 struct ContactSettings {
   int iterations = 20;                      ///< sequential-impulse sweeps over the contacts per step
+  /// [s] the step `iterations` is meant for: a longer step may sweep an island that has not converged as
+  /// often per simulated second (sweepsPerStep); 0: `iterations` at every step
+  double iterations_dt = 1e-3;
   int position_iterations = 4;              ///< position-projection sweeps for what penetration remains
   double restitution_threshold = 0.05;      ///< [m/s] an approach slower than this does not bounce (e → 0)
   double penetration_slop = 1e-4;           ///< [m] penetration left alone by the position projection
@@ -30,6 +33,11 @@ struct ContactSettings {
 
 /// Throws std::invalid_argument naming the setting for one out of range.
 void validateContactSettings(const ContactSettings& settings);
+
+/// The sweeps the resting solve may take in a step of h: `iterations`, or at a step longer than
+/// `iterations_dt` iterations × h / iterations_dt (docs/contact.md, step 5), at most kMostSweepsPerStep.
+int sweepsPerStep(const ContactSettings& settings, double h);
+constexpr int kMostSweepsPerStep = 1000000;
 
 /// What a scene declares about contact: the static environment and, per body, its collision shape or none.
 struct ContactSetup {

@@ -401,7 +401,7 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
   }
 
   RestingSolveSettings solve;
-  solve.options.iterations = settings_.iterations;
+  solve.options.iterations = sweepsPerStep(settings_, h);
   solve.options.restitution_threshold = settings_.restitution_threshold;
   solve.options.dt = h;
   solve.move_weight = h * integratorInfo(integrator_type_).constant_force_weight;

@@ -81,6 +81,8 @@ const std::vector<ParameterSpec>& sceneParameterSchema() {
       {"marker_rate", T::kNumber, 20.0, anyValue(), "Hz", "in [0.001, rate]", RBS_SHOWN(marker_rate)},
       // The contact solver's settings (docs/contact.md has their rows).
       {"contact/iterations", T::kInteger, 20, closed(1, 1000), "", "solver sweeps per step", RBS_FIELD(contact.iterations)},
+      {"contact/iterations_dt", T::kNumber, 1e-3, closed(0.0, 1.0), "s", "0: iterations at every step",
+       RBS_FIELD(contact.iterations_dt)},
       {"contact/position_iterations", T::kInteger, 4, closed(0, 1000), "", "projection sweeps per step",
        RBS_FIELD(contact.position_iterations)},
       {"contact/restitution_threshold", T::kNumber, 0.05, closed(0.0, 1000.0), "m/s", "",
