@@ -60,7 +60,7 @@ bool solveRestingContacts(std::vector<SolverContact>& contacts, std::vector<Solv
   StickingScratch scratch;
   const double sliding = slidingSpeed(settings);
   if (converged != kConvergedInSweeps &&
-      solveStickingIsland(contacts, bodies, range, settings.options.dt, sliding, scratch)) {
+      solveStickingIsland(contacts, bodies, range, settings.options.dt, sliding, scratch) == StickingOutcome::kSolved) {
     converged = kConvergedInSweeps;
   }
   finishRestingContacts(contacts, bodies, settings, range, lift_share);
@@ -106,9 +106,11 @@ void SolverIslands::group(const std::vector<std::pair<std::size_t, std::size_t>>
   island_of_root_.assign(bodies, kNoIsland);
   for (std::size_t i = 0; i < links.size(); ++i) island_of_root_[root(bodyOf(i))] = 0;
   std::size_t count = 0;
+  island_root_.clear();
   for (std::size_t k = 0; k < bodies; ++k) {
-    if (island_of_root_[k] != kNoIsland) island_of_root_[k] = count++;
+    if (island_of_root_[k] != kNoIsland) island_of_root_[k] = count++, island_root_.push_back(k);
   }
+  if (refusals_.size() != bodies) refusals_.assign(bodies, 0), waits_.assign(bodies, 0);
   island_of_point_.resize(links.size());
   island_start_.assign(count + 1, 0);
   for (std::size_t i = 0; i < links.size(); ++i) {
@@ -130,6 +132,29 @@ void SolverIslands::group(const std::vector<std::pair<std::size_t, std::size_t>>
     if (large(island) && in_block > 0) block_end_.push_back(island), in_block = 0;  // a large island alone
     in_block += island_start_[island + 1] - island_start_[island];
     if (in_block >= kContactsPerBlock || island + 1 == count) block_end_.push_back(island + 1), in_block = 0;
+  }
+}
+
+std::size_t SolverIslands::triedAtOnce() const {
+  std::size_t tried = 0;
+  for (const std::size_t block : tried_at_once_) tried += block;
+  return tried;
+}
+
+bool SolverIslands::waitsToSolveAtOnce(std::size_t island) {
+  std::uint32_t& wait = waits_[island_root_[island]];
+  if (wait == 0) return false;
+  --wait;
+  return true;
+}
+
+void SolverIslands::noteOutcome(std::size_t island, StickingOutcome outcome) {
+  const std::size_t root = island_root_[island];
+  if (outcome == StickingOutcome::kSolved) {
+    refusals_[root] = 0;
+  } else if (outcome == StickingOutcome::kRefused) {
+    refusals_[root] = static_cast<std::uint8_t>(std::min<int>(refusals_[root] + 1, kMostBackOffDoublings));
+    waits_[root] = (1u << refusals_[root]) - 1u;
   }
 }
 
@@ -177,6 +202,7 @@ void SolverIslands::solve(std::vector<SolverContact>& contacts, std::vector<Solv
   for (std::size_t island = 0; island < count; ++island) ranges_[island] = rangeOf(island);
   if (block_solvers_.size() < block_end_.size()) block_solvers_.resize(block_end_.size());
   if (block_sticking_.size() < block_end_.size()) block_sticking_.resize(block_end_.size());
+  tried_at_once_.assign(block_end_.size(), 0);
   const bool large_prepared = prepareLargeIslands(contacts, bodies, shared.options, pool, hooks);
   // A block's islands are filled, prepared, swept together in the lanes, and finished one by one.
   forEachBlock(pool, [&](std::size_t block, std::size_t begin, std::size_t end) {
@@ -193,10 +219,12 @@ void SolverIslands::solve(std::vector<SolverContact>& contacts, std::vector<Solv
                                 island_converged_.data() + begin, shared.lanes);
     // What the sweeps left unconverged, or converged only beyond the sweeps asked for, at once.
     for (std::size_t island = begin; island < end; ++island) {
-      if (island_converged_[island] == kConvergedInSweeps) continue;
-      const bool solved = solveStickingIsland(contacts, bodies, ranges_[island], shared.options.dt,
-                                              slidingSpeed(shared), block_sticking_[block]);
-      if (solved) island_converged_[island] = kConvergedInSweeps;
+      if (island_converged_[island] == kConvergedInSweeps || waitsToSolveAtOnce(island)) continue;
+      const StickingOutcome outcome = solveStickingIsland(contacts, bodies, ranges_[island], shared.options.dt,
+                                                          slidingSpeed(shared), block_sticking_[block]);
+      noteOutcome(island, outcome);
+      if (outcome != StickingOutcome::kNotTried) ++tried_at_once_[block];
+      if (outcome == StickingOutcome::kSolved) island_converged_[island] = kConvergedInSweeps;
     }
     for (std::size_t island = begin; island < end; ++island) {
       finishRestingContacts(contacts, bodies, shared, ranges_[island], lift_share_);

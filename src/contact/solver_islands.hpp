@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <utility>
 #include <vector>
@@ -92,11 +93,21 @@ class SolverIslands {
   /// Per contact of the last solve: whether its island's velocity solve converged (in its sweeps, or solved
   /// at once as if it stuck).
   bool converged(std::size_t contact) const { return island_converged_[island_of_contact_[contact]] != 0; }
+  /// How many islands the last solve solved at once, kept or refused (each a factorisation).
+  std::size_t triedAtOnce() const;
 
  private:
   // Islands go to the threads in blocks of about this many contacts: enough work per hand-out that the pool's
   // wake-ups stay small beside it, and enough blocks that two threads share a scene of a few stacks.
   static constexpr std::size_t kContactsPerBlock = 128;
+  // An island whose solve at once was refused n times in a row (n ≤ this) waits 2ⁿ − 1 of its unconverged
+  // steps before the next try (docs/contact.md, step 5): a settled pile's island, refused in most steps, paid
+  // a factorisation in every one.
+  static constexpr int kMostBackOffDoublings = 6;
+
+  /// Whether the island waits (and counts down) before its next solve at once; noteOutcome records one.
+  bool waitsToSolveAtOnce(std::size_t island);
+  void noteOutcome(std::size_t island, StickingOutcome outcome);
 
   std::size_t root(std::size_t body);
   /// The large islands' bodies filled (on the caller), then their contacts filled and prepared in runs over
@@ -109,6 +120,12 @@ class SolverIslands {
 
   std::vector<std::size_t> parent_;             // union–find over bodies
   std::vector<std::size_t> island_of_root_;     // per body that is a root: its island
+  std::vector<std::size_t> island_root_;        // per island: its smallest body (the same from step to step)
+  // Per body, for the island it is the smallest body of: solves at once refused in a row, and the
+  // unconverged steps it still waits. Each island writes its own body's entries (any thread count).
+  std::vector<std::uint8_t> refusals_;
+  std::vector<std::uint32_t> waits_;
+  std::vector<std::size_t> tried_at_once_;      // per block of the last solve
   std::vector<std::size_t> island_of_point_;
   std::vector<std::size_t> order_, island_start_, next_;
   std::vector<std::size_t> island_of_contact_;  // = island_of_point_ in order()

@@ -315,8 +315,8 @@ void saveIsland(const std::vector<SolverContact>& contacts, const std::vector<So
     s.impulses.emplace_back(c.normal_impulse, c.friction_impulse.x(), c.friction_impulse.y());
   }
 }
-bool restoreIsland(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range,
-                   const StickingScratch& s) {
+StickingOutcome restoreIsland(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies,
+                              const SolveRange& range, const StickingScratch& s) {
   for (std::size_t body = range.body_begin; body < range.body_end; ++body) {
     std::tie(bodies[body].v, bodies[body].w) = s.velocities[body - range.body_begin];
   }
@@ -324,7 +324,7 @@ bool restoreIsland(std::vector<SolverContact>& contacts, std::vector<SolverBody>
     contacts[k].normal_impulse = s.impulses[k - range.contact_begin].x();
     contacts[k].friction_impulse = s.impulses[k - range.contact_begin].tail<2>();
   }
-  return false;
+  return StickingOutcome::kRefused;
 }
 
 // One solve of the rows as numbered: true with admissible impulses in `next`, false with the last tried.
@@ -342,11 +342,12 @@ bool solveRows(const std::vector<SolverContact>& contacts, const std::vector<Sol
 
 }  // namespace
 
-bool solveStickingIsland(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range,
-                         double dt, double sliding_speed, StickingScratch& scratch) {
+StickingOutcome solveStickingIsland(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies,
+                                    const SolveRange& range, double dt, double sliding_speed, StickingScratch& scratch) {
   const std::size_t points = range.contact_end - range.contact_begin;
-  if (points > kMostPoints) return false;
-  if (sliding(contacts, range, sliding_speed) || nearlyHeld(contacts, bodies, range)) return false;
+  if (points > kMostPoints || sliding(contacts, range, sliding_speed) || nearlyHeld(contacts, bodies, range)) {
+    return StickingOutcome::kNotTried;
+  }
   saveIsland(contacts, bodies, range, scratch);
   scratch.let_go.assign(points, 0);
   Eigen::VectorXd next;
@@ -361,7 +362,7 @@ bool solveStickingIsland(std::vector<SolverContact>& contacts, std::vector<Solve
     }
   }
   applyImpulses(contacts, bodies, range, scratch, next);
-  if (pointsWithoutRowsHold(contacts, bodies, range, dt, scratch)) return true;
+  if (pointsWithoutRowsHold(contacts, bodies, range, dt, scratch)) return StickingOutcome::kSolved;
   return restoreIsland(contacts, bodies, range, scratch);
 }
 

@@ -14,6 +14,10 @@
 namespace rigid_body {
 namespace contact {
 
+/// What solveStickingIsland did: left the island to the sweeps without a factorisation (too large, sliding
+/// or already held), solved it and found the result refused (nothing changed), or applied it.
+enum class StickingOutcome { kNotTried, kRefused, kSolved };
+
 /// What a direct solve keeps between calls (its lists), so that a thread's solves reuse their memory.
 struct StickingScratch {
   std::vector<std::size_t> row_of;   // per contact direction (3 k + d): its row, or kNoRow
@@ -32,16 +36,16 @@ struct StickingScratch {
 /// times it: the least-norm impulses, else the least change from the sweeps' impulses λ₀; failing both, the
 /// points that pulled are let go (no rows, zero impulses) and the rest solved again, three solves in all. A
 /// point apart by more than 1e-9 m that the sweeps left unpressed is no row; the result is kept only if such
-/// points and those let go then close no more than their targets allow within the step `dt` [s]. True if
-/// applied. Not tried (false) for more than 256 points,
+/// points and those let go then close no more than their targets allow within the step `dt` [s]. kSolved if
+/// applied, kRefused if not. Not tried (kNotTried) for more than 256 points,
 /// where a point of a pair that already touched slipped in the sweeps' last friction update with its
 /// friction at the disc's edge, faster than `sliding_speed` [m/s] and than a tenth of the largest normal
 /// speed a point's impulse makes in the island (fₙ / m_n), or where every row already holds to 1e-13 of
 /// the island's impulses. K is singular (a face of four points has twelve rows and six degrees of freedom):
 /// docs/references.md §4.16.
 /// A point shallower than half the resting depth (1e-9 m) is sunk to it within the step.
-bool solveStickingIsland(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range,
-                         double dt, double sliding_speed, StickingScratch& scratch);
+StickingOutcome solveStickingIsland(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies,
+                                    const SolveRange& range, double dt, double sliding_speed, StickingScratch& scratch);
 
 }  // namespace contact
 }  // namespace rigid_body

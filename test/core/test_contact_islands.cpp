@@ -109,6 +109,47 @@ bool sameBits(const State& a, const State& b) {
          std::memcmp(a.q_WB.coeffs().data(), b.q_WB.coeffs().data(), 4 * sizeof(double)) == 0;
 }
 
+// An island whose solve at once is refused step after step (a box on the ground that sticking would hold
+// only with 25 times its friction: a new contact, so not counted as sliding) waits 1, 3, 7, ... 63 of its
+// unconverged steps between tries, and gets the same bits whether it waits or tries: a refused solve leaves
+// the sweeps' result. Catches a back-off that never lets the island be tried again, one island's refusals
+// holding back another, or a refused solve that changes anything.
+TEST(ContactIslands, AnIslandRefusedAgainAndAgainIsTriedAfterDoublingWaits) {
+  std::vector<SolverBody> start_bodies{environmentBody()};
+  std::vector<SolverContact> start_contacts;
+  boxOn(1, kEnvironment, 1.0, start_bodies, start_contacts);
+  start_bodies[1].v = Eigen::Vector3d(2.5, 0.0, -kG * kH);
+  for (SolverContact& c : start_contacts) c.friction = 0.1, c.sustained = false;
+  std::vector<std::pair<std::size_t, std::size_t>> links;
+  for (const SolverContact& c : start_contacts) links.emplace_back(0, 10);
+  SolverIslands islands;
+  std::vector<std::size_t> tries;
+  std::vector<SolverBody> first;
+  for (std::size_t step = 0; step < 64; ++step) {
+    std::vector<SolverBody> bodies = start_bodies;
+    std::vector<SolverContact> contacts = start_contacts;
+    islands.group(links, 2);  // object 1 touches nothing yet
+    islands.solve(contacts, bodies, {1, 2}, fewSweeps(), nullptr);
+    ASSERT_FALSE(islands.converged(0)) << step;
+    if (islands.triedAtOnce() > 0) tries.push_back(step);
+    if (step == 0) first = bodies;
+    EXPECT_TRUE(sameBits(bodies[1].dP, first[1].dP) && sameBits(bodies[1].dL, first[1].dL)) << step;
+  }
+  EXPECT_EQ(tries, (std::vector<std::size_t>{0, 2, 6, 14, 30, 62}));
+  // A second such box beside it, an island of its own, is tried at once: the first's refusals hold back
+  // only the first (waiting its 63).
+  std::vector<SolverBody> bodies = start_bodies;
+  std::vector<SolverContact> contacts = start_contacts;
+  boxOn(2, kEnvironment, 1.0, bodies, contacts);
+  bodies[2].v = bodies[1].v;
+  for (std::size_t k = 4; k < 8; ++k) contacts[k].friction = 0.1, contacts[k].sustained = false;
+  links.clear();
+  for (const SolverContact& c : contacts) links.emplace_back(c.a - 1, 10);
+  islands.group(links, 2);
+  islands.solve(contacts, bodies, {1, 2, 3}, fewSweeps(), nullptr);
+  EXPECT_EQ(islands.triedAtOnce(), 1u);
+}
+
 TEST(ContactIslands, EachIslandConvergesOnItsOwnAndGetsWhatItWouldAlone) {
   // Island 0: a ball sliding on the ground (object 0, solver body 1; one point, which two sweeps settle);
   // island 1: a 1 000 kg box (object 2, body 3) on a 1 kg one (object 1, body 2) on the ground, which five

@@ -141,7 +141,7 @@ TEST(StickingSolve, StopsEveryRowWithTheLeastNormImpulses) {
     const Eigen::VectorXd before = velocities(island);
     StickingScratch scratch;
     const SolveRange all = SolveRange::all(island.contacts.size(), island.bodies.size());
-    ASSERT_TRUE(solveStickingIsland(island.contacts, island.bodies, all, 1e-3, kSliding, scratch)) << trial;
+    ASSERT_EQ(StickingOutcome::kSolved, solveStickingIsland(island.contacts, island.bodies, all, 1e-3, kSliding, scratch)) << trial;
     // Every row's velocity is zero, the velocities are the ones the impulses' change makes, and the
     // impulses are K⁺ (K λ₀ − J V₀): the least-norm ones that stop the island.
     const Eigen::VectorXd after = velocities(island), lambda = impulses(island);
@@ -177,7 +177,7 @@ TEST(StickingSolve, AFaceLoadedOffItsCentreKeepsTheSweepsSpreadWhereTheLeastNorm
     const Eigen::VectorXd least_norm = pseudo.solve(K * warm - J * before);
     ASSERT_LT(std::min({least_norm[0], least_norm[3], least_norm[6], least_norm[9]}), 0.0) << trial;
     StickingScratch scratch;
-    ASSERT_TRUE(solveStickingIsland(island.contacts, island.bodies, SolveRange::all(4, 2), 1e-3, kSliding, scratch))
+    ASSERT_EQ(StickingOutcome::kSolved, solveStickingIsland(island.contacts, island.bodies, SolveRange::all(4, 2), 1e-3, kSliding, scratch))
         << trial;
     const Eigen::VectorXd after = velocities(island), lambda = impulses(island);
     EXPECT_LE((J * after).norm(), 1e-10 * (1.0 + (J * before).norm())) << trial;
@@ -205,7 +205,7 @@ TEST(StickingSolve, TargetsNoRigidMotionMeetsGetTheNearestVelocities) {
     Eigen::VectorXd target = Eigen::VectorXd::Zero(J.rows());
     target[0] = -1e-4;
     StickingScratch scratch;
-    ASSERT_TRUE(solveStickingIsland(island.contacts, island.bodies, SolveRange::all(4, 2), 1e-3, kSliding, scratch))
+    ASSERT_EQ(StickingOutcome::kSolved, solveStickingIsland(island.contacts, island.bodies, SolveRange::all(4, 2), 1e-3, kSliding, scratch))
         << trial;
     const Eigen::VectorXd miss = J * velocities(island) - target;
     EXPECT_GT(miss.norm(), 1e-6) << trial;  // the targets cannot all be met
@@ -225,7 +225,7 @@ TEST(StickingSolve, AnIslandThatWouldPullOrSlideIsLeftAsItWas) {
     island.bodies[2].v = pulls ? Eigen::Vector3d(0.0, 0.0, 5.0) : Eigen::Vector3d(2.0, 0.0, 0.0);
     const Island before = island;
     StickingScratch scratch;
-    EXPECT_FALSE(solveStickingIsland(island.contacts, island.bodies, SolveRange::all(island.contacts.size(), 3), 1e-3,
+    EXPECT_EQ(StickingOutcome::kRefused, solveStickingIsland(island.contacts, island.bodies, SolveRange::all(island.contacts.size(), 3), 1e-3,
                                      kSliding, scratch)) << pulls;
     EXPECT_EQ(impulses(island), impulses(before)) << pulls;
     EXPECT_EQ(velocities(island), velocities(before)) << pulls;
@@ -255,18 +255,21 @@ TEST(StickingSolve, AnIslandWithASlidingPointOrAlreadyHeldIsNotTried) {
     sliding.contacts[5].friction = 0.5;
     sliding.contacts[5].friction_impulse = Eigen::Vector2d(c.share_of_disc * 0.5 * 10.0, 0.0);
     sliding.contacts[5].slip_squared = c.slip * c.slip;
-    const bool tried = solveStickingIsland(sliding.contacts, sliding.bodies, SolveRange::all(8, 3), 1e-3, kSliding, scratch);
-    EXPECT_EQ(tried, c.tried) << c.share_of_disc << " " << c.slip;
-    if (!tried) EXPECT_EQ(velocities(sliding), velocities(island));
+    const StickingOutcome outcome =
+        solveStickingIsland(sliding.contacts, sliding.bodies, SolveRange::all(8, 3), 1e-3, kSliding, scratch);
+    EXPECT_EQ(outcome, c.tried ? StickingOutcome::kSolved : StickingOutcome::kNotTried)
+        << c.share_of_disc << " " << c.slip;
+    if (!c.tried) EXPECT_EQ(velocities(sliding), velocities(island));
   }
   island.contacts[5].slip_squared = 0.9 * kSliding * kSliding;
-  EXPECT_TRUE(solveStickingIsland(island.contacts, island.bodies, SolveRange::all(8, 3), 1e-3, kSliding, scratch));
+  EXPECT_EQ(StickingOutcome::kSolved, solveStickingIsland(island.contacts, island.bodies, SolveRange::all(8, 3), 1e-3, kSliding, scratch));
   // Now held; disturbed by 1e-15 of the impulses' effect, it is left alone, by 1e-11 it is solved again.
   for (const double disturbance : {1e-15, 1e-11}) {
     Island held = island;
     held.bodies[2].v += disturbance * 10.0 * held.bodies[2].inverse_mass * Eigen::Vector3d::UnitZ();
-    const bool tried = solveStickingIsland(held.contacts, held.bodies, SolveRange::all(8, 3), 1e-3, kSliding, scratch);
-    EXPECT_EQ(tried, disturbance > 1e-13) << disturbance;
+    const StickingOutcome outcome =
+        solveStickingIsland(held.contacts, held.bodies, SolveRange::all(8, 3), 1e-3, kSliding, scratch);
+    EXPECT_EQ(outcome, disturbance > 1e-13 ? StickingOutcome::kSolved : StickingOutcome::kNotTried) << disturbance;
   }
 }
 
@@ -281,7 +284,7 @@ TEST(StickingSolve, AFaceAtZeroDepthSinksToTheRestingDepth) {
     island.bodies[1].v = Eigen::Vector3d(0.0, 0.0, -1e-3);  // not yet held: the solve is tried
     const double dt = 1e-3;
     StickingScratch scratch;
-    ASSERT_TRUE(solveStickingIsland(island.contacts, island.bodies, SolveRange::all(4, 2), dt, kSliding, scratch));
+    ASSERT_EQ(StickingOutcome::kSolved, solveStickingIsland(island.contacts, island.bodies, SolveRange::all(4, 2), dt, kSliding, scratch));
     const double expected = separation == 0.0 ? -1e-9 / dt : 0.0;
     for (const SolverContact& c : island.contacts) {
       EXPECT_NEAR(normalSpeed(c, island.bodies[c.a], island.bodies[c.b]), expected, 1e-12) << separation;
@@ -312,7 +315,7 @@ TEST(StickingSolve, APointStillApartAndUnpressedIsNoRow) {
     for (std::size_t k = 8; k < 12; ++k) island.contacts[k].target_speed = -0.2 / dt;
     island.bodies[1].v = Eigen::Vector3d(0.0, 0.0, -1e-3);
     StickingScratch scratch;
-    ASSERT_TRUE(solveStickingIsland(island.contacts, island.bodies, SolveRange::all(12, 3), dt, kSliding, scratch));
+    ASSERT_EQ(StickingOutcome::kSolved, solveStickingIsland(island.contacts, island.bodies, SolveRange::all(12, 3), dt, kSliding, scratch));
     for (std::size_t k = 0; k < 8; ++k) {
       const SolverContact& c = island.contacts[k];
       EXPECT_NEAR(normalSpeed(c, island.bodies[c.a], island.bodies[c.b]), 0.0, 1e-12) << k;
@@ -340,7 +343,7 @@ TEST(StickingSolve, APointStillApartAndUnpressedIsNoRow) {
     ASSERT_LT(normalSpeed(island.contacts[5], top, island.bodies[1]), -0.1);
     const Island before = island;
     StickingScratch scratch;
-    EXPECT_FALSE(solveStickingIsland(island.contacts, island.bodies, SolveRange::all(6, 3), dt, kSliding, scratch));
+    EXPECT_EQ(StickingOutcome::kRefused, solveStickingIsland(island.contacts, island.bodies, SolveRange::all(6, 3), dt, kSliding, scratch));
     EXPECT_EQ(impulses(island), impulses(before));
     EXPECT_EQ(velocities(island), velocities(before));
   }
