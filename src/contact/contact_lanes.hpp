@@ -6,7 +6,6 @@
 // Internal to the contact solver.
 #pragma once
 
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
@@ -114,15 +113,11 @@ RIGID_BODY_LANE_INLINE T laneAbs(T a) {
   return laneSelect<T>(a < 0.0, -a, a);
 }
 
-/// √v lane by lane (the vector extension has none; each lane's is the scalar std::sqrt, correctly rounded).
+/// √v lane by lane (lane_math.hpp's laneSqrt, each lane's the scalar std::sqrt, correctly rounded).
 template <class T>
-RIGID_BODY_LANE_INLINE T laneSquareRoot(T v) {
-  if constexpr (std::is_same_v<T, double>) {
-    return std::sqrt(v);
-  } else {
-    for (std::size_t i = 0; i < kLaneCount<T>; ++i) v[i] = std::sqrt(v[i]);
-    return v;
-  }
+RIGID_BODY_LANE_INLINE T laneRoot(T v) {
+  integrators::laneSqrt(v);
+  return v;
 }
 
 /// ontoFrictionDisc (friction_disc.cpp) in lanes, operation for operation, so that each lane rounds as the
@@ -134,9 +129,9 @@ template <class T>
 RIGID_BODY_LANE_INLINE void frictionOntoDiscLanes(LaneMask<T> outside, const T& k00, const T& k01, const T& k11,
                                                   const T& limit, T& f1, T& f2) {
   const T half_trace = 0.5 * (k00 + k11), half_gap = 0.5 * (k00 - k11);
-  const T k_min = half_trace - laneSquareRoot<T>(half_gap * half_gap + k01 * k01);
+  const T k_min = half_trace - laneRoot<T>(half_gap * half_gap + k01 * k01);
   const T kf1 = k00 * f1 + k01 * f2, kf2 = k01 * f1 + k11 * f2;
-  const T norm = laneSquareRoot<T>(f1 * f1 + f2 * f2);
+  const T norm = laneRoot<T>(f1 * f1 + f2 * f2);
   T lambda = laneSelect<T>(k_min > 0.0, laneMax<T>(T{}, k_min * (norm / limit - 1.0)), 1e-12 * half_trace);
   LaneMask<T> active = outside & (limit > 0.0);
   T g1{}, g2{}, r{};
@@ -147,7 +142,7 @@ RIGID_BODY_LANE_INLINE void frictionOntoDiscLanes(LaneMask<T> outside, const T& 
     g1 = laneSelect<T>(active, (m11 * kf1 - k01 * kf2) * inverse, g1);
     g2 = laneSelect<T>(active, (m00 * kf2 - k01 * kf1) * inverse, g2);
     const T squared = g1 * g1 + g2 * g2;
-    r = laneSelect<T>(active, laneSquareRoot<T>(squared), r);
+    r = laneSelect<T>(active, laneRoot<T>(squared), r);
     const T q = m11 * g1 * g1 - 2.0 * k01 * g1 * g2 + m00 * g2 * g2;
     active = active & (r > limit * (1.0 + 1e-15)) & (q > 0.0);
     lambda = laneSelect<T>(active, lambda + (r - limit) * squared * det / (limit * q), lambda);

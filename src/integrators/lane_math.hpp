@@ -41,9 +41,11 @@ constexpr std::size_t kLaneCount = sizeof(T) / sizeof(double);
 
 // v ← √v, lane by lane (the vector extension has no square root of its own). Inlined into each caller, so that
 // it compiles with the caller's file's options (wide_lanes.cpp: one vector square root).
+// Any vector of doubles (Lanes, or the contact solver's eight).
 RIGID_BODY_LANE_INLINE void laneSqrt(double& v) { v = std::sqrt(v); }
-RIGID_BODY_LANE_INLINE void laneSqrt(Lanes& v) {
-  for (std::size_t i = 0; i < kLanes; ++i) v[i] = std::sqrt(v[i]);
+template <class V>
+RIGID_BODY_LANE_INLINE void laneSqrt(V& v) {
+  for (std::size_t i = 0; i < kLaneCount<V>; ++i) v[i] = std::sqrt(v[i]);
 }
 
 template <class T>
