@@ -353,6 +353,7 @@ StickingOutcome solveStickingIsland(std::vector<SolverContact>& contacts, std::v
   Eigen::VectorXd next;
   for (int round = 0;; ++round) {
     const std::size_t rows = numberRows(contacts, range, scratch);
+    if (rows == 0 && round == 0) return StickingOutcome::kNotTried;  // every point left out: nothing to solve
     if (rows == 0) return restoreIsland(contacts, bodies, range, scratch);
     next.resize(0);  // a factorisation that fails leaves it so
     if (solveRows(contacts, bodies, range, dt, rows, scratch, next)) break;

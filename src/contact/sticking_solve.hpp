@@ -40,8 +40,8 @@ struct StickingScratch {
 /// applied, kRefused if not. Not tried (kNotTried) for more than 256 points,
 /// where a point of a pair that already touched slipped in the sweeps' last friction update with its
 /// friction at the disc's edge, faster than `sliding_speed` [m/s] and than a tenth of the largest normal
-/// speed a point's impulse makes in the island (fₙ / m_n), or where every row already holds to 1e-13 of
-/// the island's impulses. K is singular (a face of four points has twelve rows and six degrees of freedom):
+/// speed a point's impulse makes in the island (fₙ / m_n), where every row already holds to 1e-13 of
+/// the island's impulses, or where every point is left out (no rows). K is singular (a face of four points has twelve rows and six degrees of freedom):
 /// docs/references.md §4.16.
 /// A point shallower than half the resting depth (1e-9 m) is sunk to it within the step.
 StickingOutcome solveStickingIsland(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies,
