@@ -35,9 +35,11 @@ struct ContactSettings {
 void validateContactSettings(const ContactSettings& settings);
 
 /// The sweeps the resting solve may take in a step of h: `iterations`, or at a step longer than
-/// `iterations_dt` iterations × h / iterations_dt (docs/contact.md, step 5), at most kMostSweepsPerStep.
+/// `iterations_dt` iterations × h / iterations_dt (docs/contact.md, step 5), at most kMostSweepsPerStep
+/// (ten times the largest `iterations`: an iterations_dt of 1e-300 s asks for more sweeps than a step can
+/// take, and a step cannot be cut short).
 int sweepsPerStep(const ContactSettings& settings, double h);
-constexpr int kMostSweepsPerStep = 1000000;
+constexpr int kMostSweepsPerStep = 10000;
 
 /// What a scene declares about contact: the static environment and, per body, its collision shape or none.
 struct ContactSetup {

@@ -67,6 +67,8 @@ TEST(Stacking, CoarseStepsSweepAsOftenPerSimulatedSecondAsTheStepTheIterationsAr
   EXPECT_EQ(sweepsPerStep(settings, 1.5e-3), 30);
   EXPECT_EQ(sweepsPerStep(settings, 0.02), 400);
   EXPECT_EQ(sweepsPerStep(settings, 1e9), kMostSweepsPerStep);
+  settings.iterations_dt = 1e-300;  // in range, and capped like a huge step
+  EXPECT_EQ(sweepsPerStep(settings, 1e-3), kMostSweepsPerStep);
   settings.iterations = 7;
   settings.iterations_dt = 0.01;
   EXPECT_EQ(sweepsPerStep(settings, 0.04), 28);
