@@ -80,9 +80,11 @@ CollisionWorld::CollisionWorld(const std::vector<CollisionShape>& environment, c
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     impl_->shape_poses.push_back(body_poses[i] * bodies[i].pose);
     impl_->body_origins.push_back(body_poses[i].translation());
+    impl_->body_rotations.emplace_back(Eigen::Vector4d::Constant(std::numeric_limits<double>::quiet_NaN()));
     impl_->body_reach.push_back(outerRadius(bodies[i]));
   }
   impl_->asleep.assign(bodies.size(), 0);
+  impl_->world.setForceUpdateAllAabbs(false);  // only active objects: awake bodies (setPose)
   impl_->plane_scans.resize(bodies.size());
   for (std::size_t i = 0; i < environment.size(); ++i) {
     impl_->add(environment[i], true, static_cast<int>(bodies.size() + i), btTransform::getIdentity());
@@ -108,13 +110,19 @@ CollisionWorld::~CollisionWorld() {
 std::size_t CollisionWorld::bodyCount() const { return impl_->body_count; }
 
 void CollisionWorld::setPose(std::size_t body, const Eigen::Vector3d& p_WB, const Eigen::Quaterniond& q_WB) {
-  const btTransform X_WS = btTransform(toBt(q_WB), toBt(p_WB)) * impl_->body_offsets[body];
-  impl_->objects[body]->setWorldTransform(X_WS);
+  if (impl_->body_origins[body] == p_WB && impl_->body_rotations[body].coeffs() == q_WB.coeffs()) return;
+  btCollisionObject& object = *impl_->objects[body];
+  object.setWorldTransform(btTransform(toBt(q_WB), toBt(p_WB)) * impl_->body_offsets[body]);
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.linear() = q_WB.toRotationMatrix();
   pose.translation() = p_WB;
   impl_->shape_poses[body] = pose * impl_->body_shapes[body].pose;
   impl_->body_origins[body] = p_WB;
+  impl_->body_rotations[body] = q_WB;
+  // The detection updates the bounding boxes of awake bodies only (setForceUpdateAllAabbs(false) in the
+  // constructor: a sleeping body's stays, and costs nothing); a sleeping body placed elsewhere (a state set
+  // from outside, a placement test) updates its own here.
+  if (impl_->asleep[body]) impl_->world.updateSingleAabb(&object);
 }
 
 void CollisionWorld::setAsleep(std::size_t body, bool asleep) {
@@ -199,6 +207,9 @@ bool CollisionWorld::movesInStep(const DetectRequest& request, const std::vector
 void CollisionWorld::addManifoldPoints(int m, const DetectRequest& request, PairScratch& scratch,
                                        std::vector<ContactPoint>& points) {
   const btPersistentManifold* manifold = impl_->dispatcher.getManifoldByIndexInternal(m);
+  // Two inactive objects (sleeping bodies, the environment) are not tested (Bullet's needsCollision), and
+  // their manifold was cleared above: a sleeping island's pairs cost this test alone.
+  if (!manifold->getBody0()->isActive() && !manifold->getBody1()->isActive()) return;
   const double max_distance = request.max_distance;
   const std::size_t first = points.size();
   if (addBoxPoints(*manifold, max_distance, scratch, points) || addFacePoints(*manifold, max_distance, scratch, points) ||

@@ -53,7 +53,8 @@ class CollisionWorld {
   std::size_t bodyCount() const;
   bool isBody(std::size_t object) const { return object < bodyCount(); }
 
-  /// Places body i's shape for the body at (p_WB, q_WB).
+  /// Places body i's shape for the body at (p_WB, q_WB); nothing to do if it stands there already (a
+  /// sleeping body, every step).
   void setPose(std::size_t body, const Eigen::Vector3d& p_WB, const Eigen::Quaterniond& q_WB);
 
   /// A sleeping body keeps its pose and is left out of detection: no pair of it with the environment or

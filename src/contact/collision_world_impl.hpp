@@ -124,6 +124,7 @@ struct CollisionWorld::Impl {
   std::vector<CollisionShape> body_shapes;
   std::vector<Eigen::Isometry3d> shape_poses;  // X_WS of each body's shape as last placed
   std::vector<Eigen::Vector3d> body_origins;   // p_WB of each body as last placed
+  std::vector<Eigen::Quaterniond> body_rotations;  // q_WB of each body as last placed (NaN: not yet)
   std::vector<double> body_reach;              // each body's outer radius about its origin [m]
   std::vector<char> asleep;                    // per body: left out of detection (setAsleep)
   std::vector<HullFaces> hull_faces;           // per body: its hull's faces (kMesh), else empty

@@ -30,6 +30,7 @@ void ContactStep::addContact(const ContactPoint& point, const SceneBodies& bodie
   SolverContact c;
   c.a = solverIndex(bodies, point.a);
   c.b = solverIndex(bodies, point.b);
+  restoreWokenPairs();  // solverIndex may have woken a sleeping body
   std::pair<Eigen::Vector3d, Eigen::Vector3d> anchors;
   PairLookup lookup;
   makeContact(point, bodies, resting, lookup, c, anchors);
@@ -170,12 +171,7 @@ void ContactStep::rememberContacts() {
   if (recording_) {
     for (std::size_t i = 0; i < solver_contacts_.size(); ++i) reportContact(i);
   }
-  if (sleep_.anyAsleep()) {
-    for (const WarmPoint& w : warm_) {
-      if (sleepingPair(w.key)) warm_next_.push_back(w);  // kept for when the island wakes
-    }
-  }
-  warm_.swap(warm_next_);
+  warm_.swap(warm_next_);  // a sleeping island's are set aside (asleep_warm_)
   indexWarmPoints();
 }
 

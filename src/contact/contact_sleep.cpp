@@ -23,6 +23,7 @@ constexpr double kFrictionLimitShare = 0.999;
 void ContactStep::wake(std::size_t k) {
   if (!sleep_.asleep(k)) return;
   sleep_.wake(k);
+  woken_ = true;
   ++statistics_.wakes;
   statistics_.sleeping_bodies = static_cast<std::int64_t>(sleep_.sleepingBodies());
 }
@@ -64,6 +65,7 @@ void ContactStep::wakeReachedIslands(const SceneBodies& bodies, const std::vecto
     for (std::size_t object : near_) {
       if (!world_->isBody(object) || !sleep_.asleep(object)) continue;
       sleep_.wake(object, &to_check_);
+      woken_ = true;
       ++statistics_.wakes;
     }
   }
@@ -111,14 +113,66 @@ void ContactStep::updateSleep(SceneBodies& bodies, double h) {
     if (a != kUnassigned && b != kUnassigned) links_.emplace_back(a, b);
   }
   sleep_.update(links_, quiet_, supported_, h, settings_.sleep_time);
+  bool fell_asleep = false;
   for (std::size_t k = 0; k < n; ++k) {
     if (!awake_[k] || !sleep_.asleep(k)) continue;
     // Fallen asleep now: at rest, as it will stay (its pose is what it was).
     State& state = bodies.states[colliders_[k]];
     state.P_W.setZero();
     state.L_W.setZero();
+    fell_asleep = true;
   }
+  if (fell_asleep) setAsideSleepingPairs();
   syncSleep();
+}
+
+void ContactStep::setAsideSleepingPairs() {
+  restoreWokenPairs();  // a pair stays in one place or the other
+  std::size_t kept = 0;
+  for (const std::uint64_t key : touching_) {
+    if (sleepingPair(key)) {
+      asleep_touching_.push_back(key);
+    } else {
+      touching_[kept++] = key;  // still sorted
+    }
+  }
+  touching_.resize(kept);
+  kept = 0;
+  for (const WarmPoint& w : warm_) {
+    if (sleepingPair(w.key)) {
+      asleep_warm_.push_back(w);
+    } else {
+      warm_[kept++] = w;
+    }
+  }
+  warm_.resize(kept);
+  indexWarmPoints();
+}
+
+void ContactStep::restoreWokenPairs() {
+  if (!woken_) return;
+  woken_ = false;
+  std::size_t kept = 0;
+  for (const std::uint64_t key : asleep_touching_) {
+    if (sleepingPair(key)) {
+      asleep_touching_[kept++] = key;
+    } else {
+      touching_.push_back(key);
+    }
+  }
+  asleep_touching_.resize(kept);
+  std::sort(touching_.begin(), touching_.end());
+  touching_.erase(std::unique(touching_.begin(), touching_.end()), touching_.end());
+  kept = 0;
+  for (const WarmPoint& w : asleep_warm_) {
+    if (sleepingPair(w.key)) {
+      asleep_warm_[kept++] = w;
+    } else {
+      warm_.push_back(w);
+    }
+  }
+  asleep_warm_.resize(kept);
+  indexWarmPoints();
 }
 
 }  // namespace contact

@@ -130,7 +130,7 @@ void ContactStep::detectPoints(const SceneBodies* bodies, double h) {
   } else {
     moving_.assign(colliders_.size(), 0);
     for (std::size_t k = 0; k < colliders_.size(); ++k) {
-      moving_[k] = reachBound(*bodies, k, h) > settings_.penetration_slop ? 1 : 0;
+      moving_[k] = !sleep_.asleep(k) && reachBound(*bodies, k, h) > settings_.penetration_slop ? 1 : 0;
     }
     world_->detect(points_, settings_.penetration_slop, speculativeDistance(h), &moving_, pool_, bodies_per_block_);
   }
@@ -185,6 +185,9 @@ void ContactStep::restart(const std::vector<State>& states) {
   touching_.clear();
   warm_.clear();
   warm_runs_.clear();
+  asleep_touching_.clear();
+  asleep_warm_.clear();
+  woken_ = false;
   for (const ContactPoint& point : points_) touching_.push_back(pairKey(point.a, point.b));
   std::sort(touching_.begin(), touching_.end());
   touching_.erase(std::unique(touching_.begin(), touching_.end()), touching_.end());
@@ -201,6 +204,7 @@ void ContactStep::step(SceneBodies& bodies, const std::vector<char>& running, do
   bodies_per_block_ = std::max<std::size_t>(1, bodies_per_block);
   if (sleep_.anyAsleep()) wakeReachedIslands(bodies, running, h);
   syncSleep();  // islands woken from outside (a new input, a force model) leave Bullet's sleep here
+  restoreWokenPairs();
   awake_.resize(colliders_.size());
   for (std::size_t k = 0; k < colliders_.size(); ++k) awake_[k] = running[k] && !sleep_.asleep(k);
   stepSplitting(bodies, awake_, h, failed, 0);
@@ -257,7 +261,8 @@ void ContactStep::stepWhole(SceneBodies& bodies, const std::vector<char>& runnin
   // state from before the step (and latches its divergence); such a step is counted as refused.
   bool refused = false;
   for (std::size_t k = 0; k < n; ++k) {
-    if (isFinite(bodies.states[colliders_[k]])) continue;
+    // A body still asleep was not touched by the step (one the solve needed woke: solverSlot).
+    if (sleep_.asleep(k) || isFinite(bodies.states[colliders_[k]])) continue;
     bodies.states[colliders_[k]] = start_[k];
     if (running[k]) failed[k] = StepStatus::kNonFinite;
     refused = true;
@@ -272,6 +277,8 @@ void ContactStep::stepWhole(SceneBodies& bodies, const std::vector<char>& runnin
     touching_.clear();
     warm_.clear();
     warm_runs_.clear();
+    asleep_touching_.clear();
+    asleep_warm_.clear();
   }
 }
 
@@ -395,10 +402,10 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
       if (!sleep_.asleep(k)) contacts_[k].clear();  // a sleeping body reports its contacts as it fell asleep
     }
   }
+  restoreWokenPairs();  // the lists may have woken a sleeping body (solverSlot)
   if (solver_contacts_.empty()) {
     rememberTouching();
-    warm_.erase(std::remove_if(warm_.begin(), warm_.end(), [&](const WarmPoint& w) { return !sleepingPair(w.key); }),
-                warm_.end());
+    warm_.clear();
     indexWarmPoints();
     for (std::size_t s = 1; s < solver_bodies_.size(); ++s) solver_of_[solver_body_of_[s]] = kUnassigned;
     return;
@@ -426,14 +433,8 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
 }
 
 void ContactStep::rememberTouching() {
-  // A sleeping island's pairs are still touching (not tested while it sleeps): kept for when it wakes.
-  kept_touching_.clear();
-  if (sleep_.anyAsleep()) {
-    for (std::uint64_t key : touching_) {
-      if (sleepingPair(key)) kept_touching_.push_back(key);
-    }
-  }
-  touching_.swap(kept_touching_);
+  // A sleeping island's pairs are set aside (asleep_touching_), kept for when it wakes.
+  touching_.clear();
   // A pair's points follow each other: one key per run before the sort.
   std::uint64_t last = ~std::uint64_t{0};
   for (const ContactPoint* point : solver_points_) {

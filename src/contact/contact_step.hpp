@@ -172,7 +172,16 @@ class ContactStep {
   std::vector<char> awake_, quiet_, supported_;  // per colliding body
   std::vector<std::pair<std::size_t, std::size_t>> links_;
   std::vector<std::size_t> to_check_;
-  std::vector<std::uint64_t> kept_touching_;
+  // The touching pairs and warm points of sleeping islands, set aside while they sleep (a pair with a
+  // sleeping body is neither detected nor solved, so nothing looks them up) and put back when the island
+  // wakes: a sleeping island costs no pass over its pairs in a step.
+  std::vector<std::uint64_t> asleep_touching_;
+  std::vector<WarmPoint> asleep_warm_;
+  bool woken_ = false;  // an island woke since its pairs were set aside
+  void setAsideSleepingPairs();
+  // Puts back the pairs of islands woken since (called wherever a wake may just have happened, before
+  // anything looks a pair up).
+  void restoreWokenPairs();
 
   void startSolverLists();
   // A collision object's solver body: solverSlot numbers it (and wakes it if it sleeps), fillSolverBody
