@@ -6,6 +6,8 @@
 // A sleeping body keeps its pose, at rest, and costs neither a free step, nor a narrow phase, nor a solve.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include "contact_step.hpp"
 
@@ -17,6 +19,21 @@ namespace {
 // A pressed pair whose friction impulse reaches this share of the disc's radius μ fₙ counts as at its
 // limit: it slides, or the smallest push would make it.
 constexpr double kFrictionLimitShare = 0.999;
+
+// Moves the entries of `from` for which `moves` holds to the end of `to`; both keep their order.
+template <class Entry, class Predicate>
+void moveWhere(std::vector<Entry>& from, std::vector<Entry>& to, Predicate moves) {
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < from.size(); ++i) {
+    if (moves(from[i])) {
+      to.push_back(from[i]);
+    } else {
+      if (kept != i) from[kept] = from[i];
+      ++kept;
+    }
+  }
+  from.resize(kept);
+}
 
 }  // namespace
 
@@ -128,50 +145,18 @@ void ContactStep::updateSleep(SceneBodies& bodies, double h) {
 
 void ContactStep::setAsideSleepingPairs() {
   restoreWokenPairs();  // a pair stays in one place or the other
-  std::size_t kept = 0;
-  for (const std::uint64_t key : touching_) {
-    if (sleepingPair(key)) {
-      asleep_touching_.push_back(key);
-    } else {
-      touching_[kept++] = key;  // still sorted
-    }
-  }
-  touching_.resize(kept);
-  kept = 0;
-  for (const WarmPoint& w : warm_) {
-    if (sleepingPair(w.key)) {
-      asleep_warm_.push_back(w);
-    } else {
-      warm_[kept++] = w;
-    }
-  }
-  warm_.resize(kept);
+  moveWhere(touching_, asleep_touching_, [&](std::uint64_t key) { return sleepingPair(key); });  // still sorted
+  moveWhere(warm_, asleep_warm_, [&](const WarmPoint& w) { return sleepingPair(w.key); });
   indexWarmPoints();
 }
 
 void ContactStep::restoreWokenPairs() {
   if (!woken_) return;
   woken_ = false;
-  std::size_t kept = 0;
-  for (const std::uint64_t key : asleep_touching_) {
-    if (sleepingPair(key)) {
-      asleep_touching_[kept++] = key;
-    } else {
-      touching_.push_back(key);
-    }
-  }
-  asleep_touching_.resize(kept);
+  moveWhere(asleep_touching_, touching_, [&](std::uint64_t key) { return !sleepingPair(key); });
   std::sort(touching_.begin(), touching_.end());
   touching_.erase(std::unique(touching_.begin(), touching_.end()), touching_.end());
-  kept = 0;
-  for (const WarmPoint& w : asleep_warm_) {
-    if (sleepingPair(w.key)) {
-      asleep_warm_[kept++] = w;
-    } else {
-      warm_.push_back(w);
-    }
-  }
-  asleep_warm_.resize(kept);
+  moveWhere(asleep_warm_, warm_, [&](const WarmPoint& w) { return !sleepingPair(w.key); });
   indexWarmPoints();
 }
 
