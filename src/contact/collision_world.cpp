@@ -84,6 +84,7 @@ CollisionWorld::CollisionWorld(const std::vector<CollisionShape>& environment, c
     impl_->body_reach.push_back(outerRadius(bodies[i]));
   }
   impl_->asleep.assign(bodies.size(), 0);
+  impl_->stale_bounds.assign(bodies.size(), 0);
   impl_->world.setForceUpdateAllAabbs(false);  // only active objects: awake bodies (setPose)
   impl_->plane_scans.resize(bodies.size());
   for (std::size_t i = 0; i < environment.size(); ++i) {
@@ -120,9 +121,23 @@ void CollisionWorld::setPose(std::size_t body, const Eigen::Vector3d& p_WB, cons
   impl_->body_origins[body] = p_WB;
   impl_->body_rotations[body] = q_WB;
   // The detection updates the bounding boxes of awake bodies only (setForceUpdateAllAabbs(false) in the
-  // constructor: a sleeping body's stays, and costs nothing); a sleeping body placed elsewhere (a state set
-  // from outside, a placement test) updates its own here.
-  if (impl_->asleep[body]) impl_->world.updateSingleAabb(&object);
+  // constructor: a sleeping body's stays, and costs nothing); a sleeping body placed elsewhere (moved by the
+  // solve in the step it fell asleep, a state set from outside, a placement test) has its box updated before
+  // the broad phase is next read (updateStaleBounds).
+  if (impl_->asleep[body]) {
+    impl_->stale_bounds[body] = 1;
+    impl_->any_stale_bounds.store(true, std::memory_order_relaxed);
+  }
+}
+
+void CollisionWorld::updateStaleBounds() const {
+  if (!impl_->any_stale_bounds.load(std::memory_order_relaxed)) return;
+  impl_->any_stale_bounds.store(false, std::memory_order_relaxed);
+  for (std::size_t body = 0; body < impl_->body_count; ++body) {
+    if (!impl_->stale_bounds[body]) continue;
+    impl_->stale_bounds[body] = 0;
+    impl_->world.updateSingleAabb(impl_->objects[body].get());
+  }
 }
 
 void CollisionWorld::setAsleep(std::size_t body, bool asleep) {
@@ -152,6 +167,7 @@ void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distan
     dispatcher.bounding_spheres[body] << impl_->body_origins[body], impl_->body_reach[body];
   }
   block = std::max<std::size_t>(1, block);
+  updateStaleBounds();
   dispatcher.pool = pool;
   dispatcher.pairs_per_block = block;
   impl_->world.performDiscreteCollisionDetection();
@@ -294,6 +310,7 @@ struct BoxQuery : btBroadphaseAabbCallback {
 void CollisionWorld::objectsNear(std::size_t self, const Eigen::Vector3d& low, const Eigen::Vector3d& high,
                                  std::vector<std::size_t>& objects) const {
   objects.clear();
+  updateStaleBounds();
   BoxQuery query;
   query.objects = &objects;
   query.self = self;

@@ -54,7 +54,8 @@ class CollisionWorld {
   bool isBody(std::size_t object) const { return object < bodyCount(); }
 
   /// Places body i's shape for the body at (p_WB, q_WB); nothing to do if it stands there already (a
-  /// sleeping body, every step).
+  /// sleeping body, every step). Safe on the pool for distinct bodies; everything else here runs on the
+  /// caller.
   void setPose(std::size_t body, const Eigen::Vector3d& p_WB, const Eigen::Quaterniond& q_WB);
 
   /// A sleeping body keeps its pose and is left out of detection: no pair of it with the environment or
@@ -97,6 +98,9 @@ class CollisionWorld {
   static void tangentBasis(const Eigen::Vector3d& normal, Eigen::Vector3d& t1, Eigen::Vector3d& t2);
 
  private:
+  /// Puts the bounding boxes of sleeping bodies placed elsewhere into the broad phase, in body order.
+  void updateStaleBounds() const;
+
   struct PairScratch;
   /// What one detection asks: the near distance, and where the pairs of moving bodies get speculative
   /// points (`speculative` false: none).

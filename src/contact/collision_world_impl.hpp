@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -127,6 +128,12 @@ struct CollisionWorld::Impl {
   std::vector<Eigen::Quaterniond> body_rotations;  // q_WB of each body as last placed (NaN: not yet)
   std::vector<double> body_reach;              // each body's outer radius about its origin [m]
   std::vector<char> asleep;                    // per body: left out of detection (setAsleep)
+  // Per body: asleep, placed elsewhere since its bounding box was last put in the broad phase. Set by
+  // setPose, which may run on the pool (each block placing its own bodies); the boxes are updated in body
+  // order on the caller (updateStaleBounds): Bullet's broad phase takes no concurrent updates, and the order
+  // of its updates decides the order of its pairs, and so of the points and of the solve's rounding.
+  std::vector<char> stale_bounds;
+  std::atomic<bool> any_stale_bounds{false};
   std::vector<HullFaces> hull_faces;           // per body: its hull's faces (kMesh), else empty
   std::vector<CollisionShape> environment_shapes;  // without their triangles: what face clipping reads
   // Per environment object: a mesh's triangles in the world (else empty), for clipping a body's face

@@ -244,7 +244,10 @@ void expectSameBitsOnAnyNumberOfThreads(bool sleep) {
     ASSERT_GT(most_asleep, 0);
     ASSERT_GT(reference.contactStatistics().wakes, 0);
   }
-  for (const std::size_t threads : {2, 3, 4}) {
+  // More threads than cores, several times: a step whose result depends on how the blocks interleave (as
+  // when sleeping bodies' bounding boxes went into Bullet's broad phase from the pool, in the order the
+  // blocks ran, and the pairs' order with it) differs in some of the runs.
+  for (const std::size_t threads : {2, 3, 4, 4, 4, 4, 4, 4}) {
     const Scene other = run(threads);
     for (std::size_t b = 0; b < reference.bodyCount(); ++b) {
       EXPECT_TRUE(sameBits(reference.state(b), other.state(b))) << threads << " threads, body " << b;
