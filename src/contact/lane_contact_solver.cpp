@@ -3,19 +3,16 @@
 #include <algorithm>
 #include <type_traits>
 
-#include "contact_lanes.hpp"
+#define RIGID_BODY_CONTACT_LANES_ISA build_isa  // lane_kernel.hpp: the build's own instruction set
+#include "lane_kernel.hpp"
+#undef RIGID_BODY_CONTACT_LANES_ISA
 
 namespace rigid_body {
 namespace contact {
 
-namespace {
+using namespace build_isa;
 
-// Each island's progress through the sweeps (solveVelocities' rule, island by island).
-struct IslandSweeps {
-  std::vector<std::size_t> allowed;  // how many sweeps each island may take
-  std::vector<char> live;            // sweeping in this sweep
-  std::vector<double> change, impulse;
-};
+namespace {
 
 template <class T>
 void loadPoint(PointLanes<T>& s, std::size_t l, const SolverContact& c) {
@@ -37,69 +34,14 @@ void loadPoint(PointLanes<T>& s, std::size_t l, const SolverContact& c) {
   setLane(s.slip_squared, l, c.slip_squared);
 }
 
-// One sweep over every group in order, lanes of converged islands off; each island's largest change and
-// impulse gathered from its lanes.
-template <class T>
-RIGID_BODY_LANE_INLINE void sweepGroups(std::vector<ManifoldLanes<T>>& groups, LaneBodyVelocity* bodies,
-                                        const SolverContact* contacts, IslandSweeps& islands) {
-  for (ManifoldLanes<T>& g : groups) {
-    LaneMask<T> live{};
-    bool any = false;
-    for (std::size_t l = 0; l < g.lanes; ++l) {
-      const bool on = islands.live[g.island[l]] != 0;
-      setMaskLane(live, l, on);
-      any = any || on;
-    }
-    if (!any) continue;
-    T change{}, impulse{};
-    sweepGroup(g, bodies, live, contacts, change, impulse);
-    for (std::size_t l = 0; l < g.lanes; ++l) {
-      const std::uint32_t i = g.island[l];
-      islands.change[i] = std::max(islands.change[i], laneValue(change, l));
-      islands.impulse[i] = std::max(islands.impulse[i], laneValue(impulse, l));
-    }
-  }
+#ifdef RIGID_BODY_WIDE_CONTACT_LANES
+bool cpuHasAvx512() {
+  static const bool has = __builtin_cpu_supports("avx512f");
+  return has;
 }
-
-// Sweeps until every island has converged or run out of sweeps; converged[i] as solveVelocities has it.
-template <class T>
-RIGID_BODY_LANE_INLINE void runSweeps(std::vector<ManifoldLanes<T>>& groups, LaneBodyVelocity* bodies,
-                                      const SolverContact* contacts, IslandSweeps& islands, char* converged,
-                                      int iterations) {
-  const std::size_t count = islands.allowed.size();
-  for (std::size_t sweep = 0;; ++sweep) {
-    bool any = false;
-    for (std::size_t i = 0; i < count; ++i) {
-      islands.live[i] = !converged[i] && sweep < islands.allowed[i];
-      any = any || islands.live[i];
-      islands.change[i] = 0.0, islands.impulse[i] = 0.0;
-    }
-    if (!any) return;
-    sweepGroups(groups, bodies, contacts, islands);
-    // To rounding within the sweeps asked for; beyond them, to a change of 1e-9 of the impulses.
-    const double tolerance = sweep < static_cast<std::size_t>(iterations) ? 1e-14 : 1e-9;
-    for (std::size_t i = 0; i < count; ++i) {
-      if (!islands.live[i] || islands.change[i] > tolerance * islands.impulse[i]) continue;
-      converged[i] = sweep < static_cast<std::size_t>(iterations) ? kConvergedInSweeps : kConvergedBeyond;
-    }
-  }
-}
-
-#if defined(__x86_64__) && !defined(__AVX__)
-#define RIGID_BODY_WIDE_CONTACT_LANES 1
-// The sweeps in 256-bit (AVX) and 512-bit (AVX-512) operations, for a build whose baseline (SSE2) splits each
-// into 128-bit ones. Only the lane code is inlined here; Eigen stays outside (invertLanes is a call).
-template <class T>
-__attribute__((noinline, target("avx"))) void runSweepsAvx(std::vector<ManifoldLanes<T>>& groups,
-                                                          LaneBodyVelocity* bodies, const SolverContact* contacts,
-                                                          IslandSweeps& islands, char* converged, int iterations) {
-  runSweeps(groups, bodies, contacts, islands, converged, iterations);
-}
-__attribute__((noinline, target("avx512f"))) void runSweepsAvx512(std::vector<ManifoldLanes<EightLanes>>& groups,
-                                                                 LaneBodyVelocity* bodies, const SolverContact* contacts,
-                                                                 IslandSweeps& islands, char* converged,
-                                                                 int iterations) {
-  runSweeps(groups, bodies, contacts, islands, converged, iterations);
+bool cpuHasAvx() {
+  static const bool has = __builtin_cpu_supports("avx");
+  return has;
 }
 #endif
 
@@ -109,12 +51,10 @@ void runSweepsWidest(bool wide, std::vector<ManifoldLanes<T>>& groups, LaneBodyV
                      const SolverContact* contacts, IslandSweeps& islands, char* converged, int iterations) {
 #ifdef RIGID_BODY_WIDE_CONTACT_LANES
   if constexpr (std::is_same_v<T, EightLanes>) {
-    static const bool avx512 = __builtin_cpu_supports("avx512f");
-    if (wide && avx512) return runSweepsAvx512(groups, bodies, contacts, islands, converged, iterations);
+    if (wide && cpuHasAvx512()) return runSweepsAvx512(groups, bodies, contacts, islands, converged, iterations);
   }
   if constexpr (!std::is_same_v<T, double>) {
-    static const bool avx = __builtin_cpu_supports("avx");
-    if (wide && avx) return runSweepsAvx(groups, bodies, contacts, islands, converged, iterations);
+    if (wide && cpuHasAvx()) return runSweepsAvx(groups, bodies, contacts, islands, converged, iterations);
   }
 #endif
   (void)wide;
@@ -122,6 +62,20 @@ void runSweepsWidest(bool wide, std::vector<ManifoldLanes<T>>& groups, LaneBodyV
 }
 
 }  // namespace
+
+std::size_t bestLaneCount(bool wide_instructions) {
+#ifdef RIGID_BODY_WIDE_CONTACT_LANES
+  if (wide_instructions && cpuHasAvx512()) return 8;
+  if (wide_instructions && cpuHasAvx()) return 4;
+  return 1;
+#elif defined(__AVX512F__)
+  return (void)wide_instructions, 8;  // the whole build targets this CPU (RIGID_BODY_SIM_NATIVE)
+#elif defined(__AVX__)
+  return (void)wide_instructions, 4;
+#else
+  return (void)wide_instructions, 1;
+#endif
+}
 
 struct LaneContactSolver::Buffers {
   std::vector<ManifoldLanes<double>> one;
@@ -237,9 +191,10 @@ void LaneContactSolver::solve(std::vector<SolverContact>& contacts, std::vector<
                     options.iterations);
     unpackGroups(groups, contacts);
   };
-  if (lanes.lanes == 1) {
+  const std::size_t width = lanes.lanes == 0 ? bestLaneCount(lanes.wide_instructions) : lanes.lanes;
+  if (width == 1) {
     sweep(buffers.one);
-  } else if (lanes.lanes == 4) {
+  } else if (width == 4) {
     sweep(buffers.four);
   } else {
     sweep(buffers.eight);

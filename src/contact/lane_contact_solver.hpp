@@ -19,9 +19,9 @@ namespace contact {
 
 /// How the lane solver runs.
 struct LaneSettings {
-  /// Manifolds per vector: 1 (one double per lane, the scalar form), 4, or otherwise 8 (two AVX groups side
-  /// by side, or one AVX-512 vector). The same bits with any.
-  std::size_t lanes = 8;
+  /// Manifolds per vector: 1 (one double per lane, the scalar form), 4, 8 (one AVX-512 vector, two AVX
+  /// ones), or 0: the most this CPU runs as whole vectors (bestLaneCount). The same bits with any.
+  std::size_t lanes = 0;
   /// The lanes as AVX-512 or AVX operations where the CPU has them (the same bits as the baseline's).
   bool wide_instructions = true;
 };
@@ -31,6 +31,11 @@ struct LaneSettings {
 /// one face a sweep meets that without holding: such an island is still solved at once, sticking_solve.hpp).
 constexpr char kConvergedInSweeps = 1;
 constexpr char kConvergedBeyond = 2;
+
+/// Eight manifolds per vector where the lanes run as AVX-512 operations, four as AVX ones, else one: GCC
+/// forms the masks of a vector wider than the instruction set's registers one lane at a time, with a branch
+/// each, and such a sweep is slower than the scalar form's (docs/contact.md, "The solver's lanes").
+std::size_t bestLaneCount(bool wide_instructions);
 
 class LaneContactSolver {
  public:

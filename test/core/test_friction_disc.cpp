@@ -7,7 +7,8 @@
 
 #include <Eigen/Geometry>
 
-#include "../../src/contact/contact_lanes.hpp"
+#define RIGID_BODY_CONTACT_LANES_ISA test_isa
+#include "../../src/contact/lane_kernel.hpp"
 #include "../../src/contact/friction_disc.hpp"
 
 using rigid_body::contact::ontoFrictionDisc;
@@ -70,7 +71,7 @@ TEST(FrictionDisc, NoResponseAlongADirectionGivesNoImpulseAlongIt) {
 // a lane before or after the scalar loop would, or that lets one lane's iterations change another's result.
 template <class T>
 void expectLanesMatchTheScalarProjection(unsigned seed) {
-  using rigid_body::contact::frictionOntoDiscLanes;
+  using rigid_body::contact::test_isa::frictionOntoDiscLanes;
   using rigid_body::contact::LaneMask;
   using rigid_body::integrators::laneValue;
   using rigid_body::integrators::setLane;
@@ -91,7 +92,7 @@ void expectLanesMatchTheScalarProjection(unsigned seed) {
       const double scale = unit(random) < 0.5 ? 1.0 + 1e-9 * unit(random) : std::pow(10.0, 3.0 * unit(random));
       const double angle = 6.3 * unit(random);
       const bool on = unit(random) < 0.7;
-      rigid_body::contact::setMaskLane(outside, l, on);
+      rigid_body::contact::test_isa::setMaskLane(outside, l, on);
       setLane(k00, l, K[l](0, 0)), setLane(k01, l, 0.5 * (K[l](0, 1) + K[l](1, 0))), setLane(k11, l, K[l](1, 1));
       setLane(limit, l, radius);
       setLane(f1, l, std::max(radius, 1e-3) * scale * std::cos(angle));
@@ -101,7 +102,7 @@ void expectLanesMatchTheScalarProjection(unsigned seed) {
     frictionOntoDiscLanes<T>(outside, k00, k01, k11, limit, f1, f2);
     for (std::size_t l = 0; l < kWidth; ++l) {
       const Eigen::Vector2d sticking(laneValue(before1, l), laneValue(before2, l));
-      const Eigen::Vector2d expected = rigid_body::contact::laneOn(outside, l)
+      const Eigen::Vector2d expected = rigid_body::contact::test_isa::laneOn(outside, l)
                                            ? ontoFrictionDisc(sticking, K[l], laneValue(limit, l))
                                            : sticking;
       ASSERT_EQ(laneValue(f1, l), expected.x()) << "trial " << trial << ", lane " << l;
