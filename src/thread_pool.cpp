@@ -41,6 +41,7 @@ void ThreadPool::parallelFor(std::size_t blocks, const std::function<void(std::s
   }
   wake_.notify_all();
   runBlocks();
+  spinWhile([&] { return blocks_done_.load(std::memory_order_acquire) != blocks; });
   std::unique_lock<std::mutex> lock(mutex_);
   done_.wait(lock, [this] { return blocks_done_ == blocks_; });
   job_ = nullptr;
@@ -63,6 +64,7 @@ void ThreadPool::runBlocks() {
 void ThreadPool::work() {
   std::size_t seen = 0;
   while (true) {
+    spinWhile([&] { return generation_.load(std::memory_order_acquire) == seen && !stopping_.load(); });
     {
       std::unique_lock<std::mutex> lock(mutex_);
       wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
