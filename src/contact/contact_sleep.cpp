@@ -37,9 +37,9 @@ void moveWhere(std::vector<Entry>& from, std::vector<Entry>& to, Predicate moves
 
 }  // namespace
 
-void ContactStep::wake(std::size_t k) {
+void ContactStep::wake(std::size_t k, std::vector<std::size_t>* woken) {
   if (!sleep_.asleep(k)) return;
-  sleep_.wake(k);
+  sleep_.wake(k, woken);
   woken_ = true;
   ++statistics_.wakes;
   statistics_.sleeping_bodies = static_cast<std::int64_t>(sleep_.sleepingBodies());
@@ -80,10 +80,7 @@ void ContactStep::wakeReachedIslands(const SceneBodies& bodies, const std::vecto
     const Eigen::Vector3d margin = Eigen::Vector3d::Constant(reachBound(bodies, k, h) + settings_.penetration_slop);
     world_->objectsNear(k, low - margin, high + margin, near_);
     for (std::size_t object : near_) {
-      if (!world_->isBody(object) || !sleep_.asleep(object)) continue;
-      sleep_.wake(object, &to_check_);
-      woken_ = true;
-      ++statistics_.wakes;
+      if (world_->isBody(object)) wake(object, &to_check_);
     }
   }
 }

@@ -74,8 +74,9 @@ class ContactStep {
     for (std::size_t& body : colliders_) body -= body > scene_body ? 1 : 0;
   }
 
-  /// Wakes the island colliding body k sleeps in, if it sleeps (its input or force model changed).
-  void wake(std::size_t k);
+  /// Wakes the island colliding body k sleeps in, if it sleeps (its input or force model changed, or an
+  /// awake body reaches it); its bodies are appended to `woken` if given.
+  void wake(std::size_t k, std::vector<std::size_t>* woken = nullptr);
 
   const std::vector<std::size_t>& colliders() const { return colliders_; }
   /// The contacts of colliding body k at the end of the last step (kept only while recording).
