@@ -5,6 +5,7 @@
 #include "box_separation.hpp"
 #include "collision_world_impl.hpp"
 #include "face_manifold.hpp"
+#include "pair_reuse.hpp"
 
 namespace rigid_body {
 namespace contact {
@@ -95,14 +96,22 @@ bool CollisionWorld::addBoxPoints(std::size_t a, std::size_t b, double max_dista
   return true;
 }
 
-bool CollisionWorld::addBoxPoints(const btPersistentManifold& manifold, double max_distance, PairScratch& scratch,
-                                  std::vector<ContactPoint>& points) {
+bool CollisionWorld::addBoxPoints(const btPersistentManifold& manifold, double max_distance, PairReuse& reuse,
+                                  PairScratch& scratch, std::vector<ContactPoint>& points) {
   const btCollisionObject* object_a = manifold.getBody0();
   const btCollisionObject* object_b = manifold.getBody1();
   const auto a = static_cast<std::size_t>(object_a->getUserIndex());
   const auto b = static_cast<std::size_t>(object_b->getUserIndex());
   if (!boxPair(a, b) || !impl_->dispatcher.testsPair(object_a, object_b)) return false;
-  return addBoxPoints(a, b, max_distance, scratch, points);
+  const HullFaces *hull_a = nullptr, *hull_b = nullptr;
+  const Eigen::Isometry3d *X_WA = nullptr, *X_WB = nullptr;
+  facedShape(a, &hull_a, &X_WA);
+  const double reach_b = 0.5 * facedShape(b, &hull_b, &X_WB)->size.norm();  // b's half diagonal
+  const std::size_t first = points.size();
+  if (reuse.reuse(a, b, *X_WA, *X_WB, reach_b, max_distance, points)) return points.size() > first;
+  addBoxPoints(a, b, max_distance, scratch, points);
+  reuse.store(a, b, *X_WA, *X_WB, max_distance, points, first);
+  return points.size() > first;
 }
 
 bool CollisionWorld::addTrianglePoints(const btPersistentManifold& manifold, double max_distance, PairScratch& scratch,

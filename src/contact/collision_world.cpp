@@ -181,6 +181,8 @@ void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distan
   request.moving = moving;
   request.speculative = speculative_distance > max_distance && moving != nullptr;
   const auto manifolds = static_cast<std::size_t>(dispatcher.getNumManifolds());
+  if (impl_->box_pairs.size() < manifolds) impl_->box_pairs.resize(manifolds);
+  for (PairReuse& pair : impl_->box_pairs) pair.forget();
   const std::size_t per_manifold_block = scaledBlock(block, kManifoldBlocks);
   const std::size_t per_body_block = scaledBlock(block, kPlaneBlocks);
   const std::size_t manifold_blocks = blockCount(manifolds, per_manifold_block);
@@ -228,7 +230,7 @@ void CollisionWorld::addManifoldPoints(int m, const DetectRequest& request, Pair
   if (!manifold->getBody0()->isActive() && !manifold->getBody1()->isActive()) return;
   const double max_distance = request.max_distance;
   const std::size_t first = points.size();
-  if (addBoxPoints(*manifold, max_distance, scratch, points) || addFacePoints(*manifold, max_distance, scratch, points) ||
+  if (addBoxPoints(*manifold, max_distance, impl_->box_pairs[static_cast<std::size_t>(m)], scratch, points) || addFacePoints(*manifold, max_distance, scratch, points) ||
       addTrianglePoints(*manifold, max_distance, scratch, points)) {
     if (movesInStep(request, points, first)) {
       addSpeculativePoints(first, max_distance, request.speculative_distance, max_distance, scratch, points);
@@ -286,6 +288,12 @@ void CollisionWorld::addPlanePoints(std::size_t body, const DetectRequest& reque
       planeContacts(body, plane.object, request.speculative_distance, points, request.max_distance);
     }
   }
+}
+
+std::size_t CollisionWorld::reusedPairs() const {
+  std::size_t reused = 0;
+  for (const PairReuse& pair : impl_->box_pairs) reused += pair.reused() ? 1 : 0;
+  return reused;
 }
 
 bool CollisionWorld::isPlane(std::size_t object) const {

@@ -25,6 +25,7 @@ class ThreadPool;
 namespace contact {
 
 struct HullFaces;
+class PairReuse;
 
 /// One point of contact between two collision objects. Objects 0 … bodies−1 are the colliding bodies (in
 /// the order given), the rest the environment shapes.
@@ -75,6 +76,10 @@ class CollisionWorld {
   /// bodies per block: 64 by default, any size from 1); the list is the same on any number of threads.
   void detect(std::vector<ContactPoint>& points, double max_distance, double speculative_distance = 0.0,
               const std::vector<char>* moving = nullptr, ThreadPool* pool = nullptr, std::size_t block = 64);
+
+  /// How many pairs the last detect gave the points kept from an earlier one (pair_reuse.hpp): two boxes
+  /// that had not moved relative to each other.
+  std::size_t reusedPairs() const;
 
   /// Whether an environment object is a half-space (handled here in closed form, not by Bullet).
   bool isPlane(std::size_t object) const;
@@ -149,7 +154,8 @@ class CollisionWorld {
   /// not test (asleep, or beyond the near distance).
   bool addBoxPoints(std::size_t a, std::size_t b, double max_distance, PairScratch& scratch,
                     std::vector<ContactPoint>& points);
-  bool addBoxPoints(const btPersistentManifold& manifold, double max_distance, PairScratch& scratch,
+  /// With `reuse`, the points kept there for the pair when it has not moved (else made and kept there).
+  bool addBoxPoints(const btPersistentManifold& manifold, double max_distance, PairReuse& reuse, PairScratch& scratch,
                     std::vector<ContactPoint>& points);
   /// A body on an environment mesh: for each triangle that holds a point of the manifold, the body's face
   /// along the triangle's deepest point's normal clipped against the triangle (the triangle's own point

@@ -19,6 +19,7 @@
 #include "collision_world.hpp"
 #include "convex_hull.hpp"
 #include "near_dispatcher.hpp"
+#include "pair_reuse.hpp"
 #include "shape_features.hpp"
 
 namespace rigid_body {
@@ -139,6 +140,10 @@ struct CollisionWorld::Impl {
   // Per environment object: a mesh's triangles in the world (else empty), for clipping a body's face
   // against the triangle it touches (CollisionWorld::addTrianglePoints).
   std::vector<std::vector<std::array<Eigen::Vector3d, 3>>> environment_triangles;
+  // Per manifold of the dispatcher (its index): the points of a box pair as last detected, reused while
+  // the pair stays put (pair_reuse.hpp). An entry moved to another index when a manifold is released holds
+  // another pair's points there, which its own pair's check refuses.
+  std::vector<PairReuse> box_pairs;
   PairScratch scratch;                         // of pairDistance() and of a detection on one thread
   std::vector<ContactPoint> pair_points, clipped_points;  // scratch of pairDistance() (points it returns to no one)
   // A detection on the pool: each block of manifolds or of bodies on the half-spaces makes its points in a

@@ -1,0 +1,58 @@
+// A pair's contact points kept from one detection to the next while the pair's relative pose stays put
+// (docs/contact.md, step 2, "Points reused at rest"): two boxes resting on each other have the same points,
+// to far below the near distance, step after step, and recomputing them (a separating-axis test of fifteen
+// axes, two supporting faces, clipping) is most of a resting scene's detection. Jolt's contact manager
+// reuses a body pair's manifold the same way (ContactConstraintManager, "body pair cache"), under a
+// tolerance of a millimetre and two degrees; here the tolerance is a thousandth of the near distance.
+// Bullet-free.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "collision_world.hpp"
+
+namespace rigid_body {
+namespace contact {
+
+/// How far any point of one shape may have moved relative to the other, as a share of the near distance,
+/// for the pair's points to be reused: the points then stand where a fresh detection would put them to
+/// within this (a tenth of a micrometre at the default slop of 0.1 mm).
+constexpr double kReuseShare = 1e-3;
+
+/// One pair's points as last made, in each shape's own frame, with the relative pose they were made at.
+class PairReuse {
+ public:
+  /// Appends the pair's points (objects a and b, shapes at X_WA and X_WB) as they stand now and returns true
+  /// if the pair is the one stored, asked with the same near distance, and no point within `reach_b` of b's
+  /// origin has moved relative to a by more than kReuseShare × max_distance since they were made: each
+  /// point carried by its shape and its distance measured anew along the normal carried by a (a point now
+  /// farther apart than max_distance is left out). Else appends nothing and returns false.
+  bool reuse(std::size_t a, std::size_t b, const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_WB,
+             double reach_b, double max_distance, std::vector<ContactPoint>& points);
+
+  /// Whether the last reuse() since forget() returned true.
+  bool reused() const { return reused_; }
+  void forget() { reused_ = false; }
+
+  /// Keeps points[first…] (the pair's fresh points, at most four, one normal) for the pair at these poses;
+  /// more than four, or mixed normals, are not kept (the next detection makes them afresh).
+  void store(std::size_t a, std::size_t b, const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_WB,
+             double max_distance, const std::vector<ContactPoint>& points, std::size_t first);
+
+ private:
+  bool stored_ = false, reused_ = false;
+  std::size_t a_ = 0, b_ = 0;
+  double max_distance_ = 0.0;
+  Eigen::Matrix3d R_AB_ = Eigen::Matrix3d::Identity();  // b's shape in a's, when the points were made
+  Eigen::Vector3d p_AB_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal_A_ = Eigen::Vector3d::UnitZ();  // from b towards a, in a's frame
+  std::size_t count_ = 0;
+  std::array<Eigen::Vector3d, 4> on_a_A_, on_b_B_;  // each point's witnesses, in their own shape's frame
+};
+
+}  // namespace contact
+}  // namespace rigid_body
