@@ -61,23 +61,32 @@ void prepareContactRows(std::vector<SolverContact>& contacts, const std::vector<
     SolverContact& c = contacts[k];
     const SolverBody& a = bodies[c.a];
     const SolverBody& b = bodies[c.b];
-    Eigen::Matrix3d D;  // the directions n, t1, t2 as columns
-    D << c.n, c.t1, c.t2;
+    const Eigen::Vector3d* directions[3] = {&c.n, &c.t1, &c.t2};
     for (int j = 0; j < 3; ++j) {
-      c.cross_a.col(j) = c.r_a.cross(D.col(j));
-      c.cross_b.col(j) = c.r_b.cross(D.col(j));
+      c.cross_a.col(j) = c.r_a.cross(*directions[j]);
+      c.cross_b.col(j) = c.r_b.cross(*directions[j]);
     }
-    c.response_a = a.inverse_inertia_W * c.cross_a;
-    c.response_b = b.inverse_inertia_W * c.cross_b;
-    // K in the contact's directions: (1/M_a + 1/M_b) 1 + (r_a×D)ᵀ I_a⁻¹ (r_a×D) + the same for b.
-    const Eigen::Matrix3d K = (a.inverse_mass + b.inverse_mass) * Eigen::Matrix3d::Identity() +
-                              c.cross_a.transpose() * c.response_a + c.cross_b.transpose() * c.response_b;
-    c.normal_mass = K(0, 0) > 0.0 ? 1.0 / K(0, 0) : 0.0;
-    const Eigen::Matrix2d k_t = K.bottomRightCorner<2, 2>();
-    c.tangent_mass = k_t.determinant() > 0.0 ? Eigen::Matrix2d(k_t.inverse()) : Eigen::Matrix2d::Zero();
-    c.tangent_response = k_t;
+    c.response_a.noalias() = a.inverse_inertia_W * c.cross_a;
+    c.response_b.noalias() = b.inverse_inertia_W * c.cross_b;
+    // K in the contact's directions, (1/M_a + 1/M_b) 1 + (r_a×D)ᵀ I_a⁻¹ (r_a×D) + the same for b: only the
+    // entries the solve reads, the normal's and the tangents' block, whose two off-diagonal entries are one
+    // (K is symmetric: I⁻¹ is).
+    const double mass = a.inverse_mass + b.inverse_mass;
+    const auto entry = [&c](int i, int j) {
+      return c.cross_a.col(i).dot(c.response_a.col(j)) + c.cross_b.col(i).dot(c.response_b.col(j));
+    };
+    const double k00 = mass + entry(0, 0), k11 = mass + entry(1, 1), k22 = mass + entry(2, 2), k12 = entry(1, 2);
+    c.normal_mass = k00 > 0.0 ? 1.0 / k00 : 0.0;
+    c.tangent_response << k11, k12, k12, k22;
+    const double determinant = k11 * k22 - k12 * k12;
+    if (determinant > 0.0) {
+      c.tangent_mass << k22, -k12, -k12, k11;
+      c.tangent_mass /= determinant;
+    } else {
+      c.tangent_mass.setZero();
+    }
     // Newton's law: the normal speed after is −e times the speed before, for approaches fast enough to bounce.
-    const double approach = c.n.dot(relativeVelocity(c, bodies));
+    const double approach = c.n.dot(a.v + a.w.cross(c.r_a) - b.v - b.w.cross(c.r_b));
     c.target_speed = 0.0;
     if (options.bounce && approach < -options.restitution_threshold) c.target_speed = -c.restitution * approach;
     // Speculative: a contact still apart may close its gap, but no more, within the next step.
