@@ -29,6 +29,9 @@ struct ContactSettings {
   double event_tolerance = 1e-12;           ///< [s] width of the bracket that locates an impact
   bool sleep = true;                        ///< put islands at rest to sleep (docs/contact.md, "Sleeping")
   double sleep_time = 0.5;                  ///< [s] how long an island stays quiet before it sleeps
+  /// keep a pair's points from one detection to the next while it has not moved relative to itself by more
+  /// than a thousandth of the slop (docs/contact.md, step 2, "Points reused at rest")
+  bool reuse_points = true;
 };
 
 /// Throws std::invalid_argument naming the setting for one out of range.

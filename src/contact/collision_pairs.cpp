@@ -27,8 +27,17 @@ const CollisionShape* CollisionWorld::facedShape(std::size_t object, const HullF
   return &shape;
 }
 
-bool CollisionWorld::addFacePoints(const btPersistentManifold& manifold, double max_distance, PairScratch& scratch,
-                                   std::vector<ContactPoint>& points) {
+bool CollisionWorld::addFacePoints(const btPersistentManifold& manifold, double max_distance, PairReuse& reuse,
+                                   PairScratch& scratch, std::vector<ContactPoint>& points) {
+  const auto a = static_cast<std::size_t>(manifold.getBody0()->getUserIndex());
+  const auto b = static_cast<std::size_t>(manifold.getBody1()->getUserIndex());
+  const HullFaces *hull_a = nullptr, *hull_b = nullptr;
+  const Eigen::Isometry3d *X_WA = nullptr, *X_WB = nullptr;
+  if (reuse.reused()) {  // the dispatcher skipped its query (faceClippedPairStandsStill)
+    facedShape(a, &hull_a, &X_WA), facedShape(b, &hull_b, &X_WB);
+    reuse.appendPoints(*X_WA, *X_WB, max_distance, points);
+    return true;
+  }
   // The one query's point (the deepest, should the manifold hold more) gives the normal.
   int deepest = -1;
   for (int c = 0; c < manifold.getNumContacts(); ++c) {
@@ -36,7 +45,25 @@ bool CollisionWorld::addFacePoints(const btPersistentManifold& manifold, double 
   }
   if (deepest < 0) return false;
   const ContactPoint query = pointFrom(manifold.getContactPoint(deepest), manifold.getBody0(), manifold.getBody1());
-  return addFacePoints(query, max_distance, scratch, points);
+  const std::size_t first = points.size();
+  if (!addFacePoints(query, max_distance, scratch, points)) return false;
+  if (impl_->reuse_points) {
+    facedShape(a, &hull_a, &X_WA), facedShape(b, &hull_b, &X_WB);
+    reuse.store(a, b, *X_WA, *X_WB, max_distance, points, first);
+  }
+  return true;
+}
+
+bool CollisionWorld::faceClippedPairStandsStill(const btPersistentManifold& manifold, double max_distance) {
+  const auto m = static_cast<std::size_t>(manifold.m_index1a);
+  const auto a = static_cast<std::size_t>(manifold.getBody0()->getUserIndex());
+  const auto b = static_cast<std::size_t>(manifold.getBody1()->getUserIndex());
+  if (m >= impl_->pair_reuse.size() || !faceClippedPair(proxyType(a), proxyType(b))) return false;
+  const HullFaces *hull_a = nullptr, *hull_b = nullptr;
+  const Eigen::Isometry3d *X_WA = nullptr, *X_WB = nullptr;
+  facedShape(a, &hull_a, &X_WA), facedShape(b, &hull_b, &X_WB);
+  return impl_->pair_reuse[m].standsStill(a, b, *X_WA, *X_WB, impl_->shape_reach[a], impl_->shape_reach[b],
+                                          max_distance);
 }
 
 int CollisionWorld::proxyType(std::size_t object) const {
@@ -105,12 +132,15 @@ bool CollisionWorld::addBoxPoints(const btPersistentManifold& manifold, double m
   if (!boxPair(a, b) || !impl_->dispatcher.testsPair(object_a, object_b)) return false;
   const HullFaces *hull_a = nullptr, *hull_b = nullptr;
   const Eigen::Isometry3d *X_WA = nullptr, *X_WB = nullptr;
-  facedShape(a, &hull_a, &X_WA);
-  const double reach_b = 0.5 * facedShape(b, &hull_b, &X_WB)->size.norm();  // b's half diagonal
+  facedShape(a, &hull_a, &X_WA), facedShape(b, &hull_b, &X_WB);
   const std::size_t first = points.size();
-  if (reuse.reuse(a, b, *X_WA, *X_WB, reach_b, max_distance, points)) return points.size() > first;
-  addBoxPoints(a, b, max_distance, scratch, points);
-  reuse.store(a, b, *X_WA, *X_WB, max_distance, points, first);
+  if (impl_->reuse_points &&
+      reuse.standsStill(a, b, *X_WA, *X_WB, impl_->shape_reach[a], impl_->shape_reach[b], max_distance)) {
+    reuse.appendPoints(*X_WA, *X_WB, max_distance, points);
+  } else {
+    addBoxPoints(a, b, max_distance, scratch, points);
+    if (impl_->reuse_points) reuse.store(a, b, *X_WA, *X_WB, max_distance, points, first);
+  }
   return points.size() > first;
 }
 

@@ -82,6 +82,9 @@ CollisionWorld::CollisionWorld(const std::vector<CollisionShape>& environment, c
     impl_->body_origins.push_back(body_poses[i].translation());
     impl_->body_rotations.emplace_back(Eigen::Vector4d::Constant(std::numeric_limits<double>::quiet_NaN()));
     impl_->body_reach.push_back(outerRadius(bodies[i]));
+    CollisionShape about_origin = impl_->body_shapes[i];
+    about_origin.pose = Eigen::Isometry3d::Identity();
+    impl_->shape_reach.push_back(outerRadius(about_origin));
   }
   impl_->asleep.assign(bodies.size(), 0);
   impl_->stale_bounds.assign(bodies.size(), 0);
@@ -89,6 +92,7 @@ CollisionWorld::CollisionWorld(const std::vector<CollisionShape>& environment, c
   impl_->plane_scans.resize(bodies.size());
   for (std::size_t i = 0; i < environment.size(); ++i) {
     impl_->add(environment[i], true, static_cast<int>(bodies.size() + i), btTransform::getIdentity());
+    impl_->shape_reach.push_back(std::numeric_limits<double>::infinity());
     impl_->environment_shapes.push_back(environment[i]);
     impl_->environment_triangles.emplace_back();
     if (environment[i].type == ShapeType::kMesh) {
@@ -170,7 +174,14 @@ void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distan
   updateStaleBounds();
   dispatcher.pool = pool;
   dispatcher.pairs_per_block = block;
+  for (PairReuse& pair : impl_->pair_reuse) pair.forget();
+  if (impl_->reuse_points) {
+    dispatcher.stands_still = [this, max_distance](const btPersistentManifold& manifold) {
+      return faceClippedPairStandsStill(manifold, max_distance);
+    };
+  }
   impl_->world.performDiscreteCollisionDetection();
+  dispatcher.stands_still = nullptr;
   dispatcher.pool = nullptr;
   impl_->broadphase.m_deferedcollide = false;  // paired once as a whole; from now on as objects move
   // A pair (or a body on a half-space) with a point within max_distance, one of whose bodies moves: its
@@ -181,8 +192,7 @@ void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distan
   request.moving = moving;
   request.speculative = speculative_distance > max_distance && moving != nullptr;
   const auto manifolds = static_cast<std::size_t>(dispatcher.getNumManifolds());
-  if (impl_->box_pairs.size() < manifolds) impl_->box_pairs.resize(manifolds);
-  for (PairReuse& pair : impl_->box_pairs) pair.forget();
+  if (impl_->pair_reuse.size() < manifolds) impl_->pair_reuse.resize(manifolds);
   const std::size_t per_manifold_block = scaledBlock(block, kManifoldBlocks);
   const std::size_t per_body_block = scaledBlock(block, kPlaneBlocks);
   const std::size_t manifold_blocks = blockCount(manifolds, per_manifold_block);
@@ -230,7 +240,9 @@ void CollisionWorld::addManifoldPoints(int m, const DetectRequest& request, Pair
   if (!manifold->getBody0()->isActive() && !manifold->getBody1()->isActive()) return;
   const double max_distance = request.max_distance;
   const std::size_t first = points.size();
-  if (addBoxPoints(*manifold, max_distance, impl_->box_pairs[static_cast<std::size_t>(m)], scratch, points) || addFacePoints(*manifold, max_distance, scratch, points) ||
+  PairReuse& reuse = impl_->pair_reuse[static_cast<std::size_t>(m)];
+  if (addBoxPoints(*manifold, max_distance, reuse, scratch, points) ||
+      addFacePoints(*manifold, max_distance, reuse, scratch, points) ||
       addTrianglePoints(*manifold, max_distance, scratch, points)) {
     if (movesInStep(request, points, first)) {
       addSpeculativePoints(first, max_distance, request.speculative_distance, max_distance, scratch, points);
@@ -290,9 +302,11 @@ void CollisionWorld::addPlanePoints(std::size_t body, const DetectRequest& reque
   }
 }
 
+void CollisionWorld::setReusePoints(bool reuse) { impl_->reuse_points = reuse; }
+
 std::size_t CollisionWorld::reusedPairs() const {
   std::size_t reused = 0;
-  for (const PairReuse& pair : impl_->box_pairs) reused += pair.reused() ? 1 : 0;
+  for (const PairReuse& pair : impl_->pair_reuse) reused += pair.reused() ? 1 : 0;
   return reused;
 }
 

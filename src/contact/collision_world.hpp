@@ -77,8 +77,12 @@ class CollisionWorld {
   void detect(std::vector<ContactPoint>& points, double max_distance, double speculative_distance = 0.0,
               const std::vector<char>* moving = nullptr, ThreadPool* pool = nullptr, std::size_t block = 64);
 
-  /// How many pairs the last detect gave the points kept from an earlier one (pair_reuse.hpp): two boxes
-  /// that had not moved relative to each other.
+  /// Whether detect keeps a pair's points for the next detection while the pair stays put (pair_reuse.hpp;
+  /// on unless set off).
+  void setReusePoints(bool reuse);
+
+  /// How many pairs the last detect gave the points kept from an earlier one (pair_reuse.hpp): two boxes,
+  /// or two shapes whose points come from face clipping, that had not moved relative to each other.
   std::size_t reusedPairs() const;
 
   /// Whether an environment object is a half-space (handled here in closed form, not by Bullet).
@@ -144,8 +148,13 @@ class CollisionWorld {
   /// its manifold's deepest; false, adding nothing, where the pair's shapes or faces do not make them.
   bool addFacePoints(const ContactPoint& query, double max_distance, PairScratch& scratch,
                      std::vector<ContactPoint>& points);
-  bool addFacePoints(const btPersistentManifold& manifold, double max_distance, PairScratch& scratch,
-                     std::vector<ContactPoint>& points);
+  /// The manifold's: with `reuse`, the points kept there when the dispatcher found the pair had not moved
+  /// (faceClippedPairStandsStill), else made from its query and kept there.
+  bool addFacePoints(const btPersistentManifold& manifold, double max_distance, PairReuse& reuse,
+                     PairScratch& scratch, std::vector<ContactPoint>& points);
+  /// Whether a face-clipped pair's points from its last detection stand (pair_reuse.hpp): the dispatcher
+  /// then skips its query.
+  bool faceClippedPairStandsStill(const btPersistentManifold& manifold, double max_distance);
   /// Whether both objects are boxes.
   bool boxPair(std::size_t a, std::size_t b) const;
   /// Two boxes: their points within max_distance by face clipping along their best separating axis

@@ -140,10 +140,15 @@ struct CollisionWorld::Impl {
   // Per environment object: a mesh's triangles in the world (else empty), for clipping a body's face
   // against the triangle it touches (CollisionWorld::addTrianglePoints).
   std::vector<std::vector<std::array<Eigen::Vector3d, 3>>> environment_triangles;
-  // Per manifold of the dispatcher (its index): the points of a box pair as last detected, reused while
-  // the pair stays put (pair_reuse.hpp). An entry moved to another index when a manifold is released holds
-  // another pair's points there, which its own pair's check refuses.
-  std::vector<PairReuse> box_pairs;
+  // Per manifold of the dispatcher (its index, btPersistentManifold::m_index1a): the points of a box pair
+  // or a face-clipped pair as last detected, reused while the pair stays put (pair_reuse.hpp). When a
+  // manifold is released another takes its index; the stored points then name another pair, and its own
+  // check refuses them.
+  std::vector<PairReuse> pair_reuse;
+  bool reuse_points = true;
+  // Per object: its shape's outer radius about the shape's origin (the environment's: infinite, for
+  // PairReuse, which then bounds the motion by the body's).
+  std::vector<double> shape_reach;
   PairScratch scratch;                         // of pairDistance() and of a detection on one thread
   std::vector<ContactPoint> pair_points, clipped_points;  // scratch of pairDistance() (points it returns to no one)
   // A detection on the pool: each block of manifolds or of bodies on the half-spaces makes its points in a

@@ -60,6 +60,7 @@ ContactStep::ContactStep(const std::vector<CollisionShape>& environment, const C
     names_.push_back(environment[i].name.empty() ? "environment shape " + std::to_string(i) : environment[i].name);
   }
   world_ = std::make_unique<CollisionWorld>(environment, shapes, poses);
+  world_->setReusePoints(settings_.reuse_points);
   const std::size_t n = colliders.size();
   start_.resize(n);
   engagement_.assign(n, 0);

@@ -72,6 +72,7 @@ void NearDispatcher::dispatchAllCollisionPairs(btOverlappingPairCache* pairs, co
     manifolds.resizeNoInitialize(0);
     pair.m_algorithm->getAllContactManifolds(manifolds);
     const bool convex = a->getCollisionShape()->isConvex() && b->getCollisionShape()->isConvex();
+    if (convex && manifolds.size() == 1 && stands_still && stands_still(*manifolds[0])) continue;
     if (pool != nullptr && convex && manifolds.size() > 0) {
       pooled_pairs_.push_back(&pair);
     } else {

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "rigid_body_sim/thread_pool.hpp"
@@ -27,6 +28,10 @@ struct NearDispatcher : btCollisionDispatcher {
   /// duration of a detection.
   ThreadPool* pool = nullptr;
   std::size_t pairs_per_block = 64;
+  /// Asked, on the caller, of a convex pair that has its manifold: whether the points it gave last time still
+  /// stand (pair_reuse.hpp); its query is then skipped and its manifold left empty. Empty: every pair is
+  /// queried.
+  std::function<bool(const btPersistentManifold&)> stands_still;
 
   /// Every overlapping pair of the broad phase, in its order: those that need one get their algorithm (and a
   /// pair's first manifold) here, in that order, on the caller, since Bullet's dispatcher hands both out of

@@ -1,10 +1,9 @@
 // A pair's contact points kept from one detection to the next while the pair's relative pose stays put
-// (docs/contact.md, step 2, "Points reused at rest"): two boxes resting on each other have the same points,
-// to far below the near distance, step after step, and recomputing them (a separating-axis test of fifteen
-// axes, two supporting faces, clipping) is most of a resting scene's detection. Jolt's contact manager
-// reuses a body pair's manifold the same way (ContactConstraintManager, "body pair cache"), under a
-// tolerance of a millimetre and two degrees; here the tolerance is a thousandth of the near distance.
-// Bullet-free.
+// (docs/contact.md, step 2, "Points reused at rest"): two faces resting on each other have the same points,
+// to far below the near distance, step after step, and recomputing them (a GJK query or a separating-axis
+// test of fifteen axes, two supporting faces, clipping) is most of a resting scene's detection. Jolt's
+// contact manager reuses a body pair's manifold the same way (ContactConstraintManager, "body pair cache"),
+// within a millimetre and two degrees; here the bound is a thousandth of the near distance. Bullet-free.
 #pragma once
 
 #include <Eigen/Core>
@@ -19,29 +18,35 @@ namespace rigid_body {
 namespace contact {
 
 /// How far any point of one shape may have moved relative to the other, as a share of the near distance,
-/// for the pair's points to be reused: the points then stand where a fresh detection would put them to
-/// within this (a tenth of a micrometre at the default slop of 0.1 mm).
+/// for the pair's points to be reused: a tenth of a micrometre at the default slop of 0.1 mm.
 constexpr double kReuseShare = 1e-3;
 
 /// One pair's points as last made, in each shape's own frame, with the relative pose they were made at.
 class PairReuse {
  public:
-  /// Appends the pair's points (objects a and b, shapes at X_WA and X_WB) as they stand now and returns true
-  /// if the pair is the one stored, asked with the same near distance, and no point within `reach_b` of b's
-  /// origin has moved relative to a by more than kReuseShare × max_distance since they were made: each
-  /// point carried by its shape and its distance measured anew along the normal carried by a (a point now
-  /// farther apart than max_distance is left out). Else appends nothing and returns false.
-  bool reuse(std::size_t a, std::size_t b, const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_WB,
-             double reach_b, double max_distance, std::vector<ContactPoint>& points);
+  /// Whether the points stored are the pair's (objects a and b, shapes at X_WA and X_WB), made with the same
+  /// near distance, and no point of either shape has moved relative to the other by more than kReuseShare ×
+  /// max_distance since: for a point x of b, |x| ≤ reach_b about b's origin, the motion seen from a is
+  /// (R − R₀) x + (p − p₀), at most ‖R − R₀‖_F reach_b + |p − p₀| (the Frobenius norm bounds the spectral
+  /// one), with R, p b's pose in a's frame (R₀, p₀ when the points were made); and the same with the roles
+  /// swapped. The smaller bound decides (either covers the contact, which lies in both shapes); an infinite
+  /// reach (the environment's, here) leaves the other. Not finite: never. Remembered for reused().
+  bool standsStill(std::size_t a, std::size_t b, const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_WB,
+                   double reach_a, double reach_b, double max_distance);
 
-  /// Whether the last reuse() since forget() returned true.
-  bool reused() const { return reused_; }
-  void forget() { reused_ = false; }
+  /// Appends the stored points as they stand now: each witness carried by its own shape, the normal by a, the
+  /// distance measured anew along it (a point now farther apart than max_distance is left out).
+  void appendPoints(const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_WB, double max_distance,
+                    std::vector<ContactPoint>& points) const;
 
   /// Keeps points[first…] (the pair's fresh points, at most four, one normal) for the pair at these poses;
   /// more than four, or mixed normals, are not kept (the next detection makes them afresh).
   void store(std::size_t a, std::size_t b, const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_WB,
              double max_distance, const std::vector<ContactPoint>& points, std::size_t first);
+
+  /// Whether the last standsStill() since forget() said yes.
+  bool reused() const { return reused_; }
+  void forget() { reused_ = false; }
 
  private:
   bool stored_ = false, reused_ = false;

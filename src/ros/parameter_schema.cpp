@@ -94,6 +94,7 @@ const std::vector<ParameterSpec>& sceneParameterSchema() {
       {"contact/sleep", T::kBool, 1, anyValue(), "", "", RBS_FIELD(contact.sleep)},
       {"contact/sleep_time", T::kNumber, 0.5, closed(0.01, 3600.0), "s", "quiet time before an island sleeps",
        RBS_FIELD(contact.sleep_time)},
+      {"contact/reuse_points", T::kBool, 1, anyValue(), "", "", RBS_FIELD(contact.reuse_points)},
       {"noise/position_stddev", T::kList, 0.0, anyValue(), "m", "", RBS_BY_HAND},
       {"noise/orientation_stddev", T::kList, 0.0, anyValue(), "rad", "", RBS_BY_HAND},
       {"noise/linear_velocity_stddev", T::kList, 0.0, anyValue(), "m/s", "", RBS_BY_HAND},

@@ -398,7 +398,7 @@ NodeConfig parseConfig(const XmlRpcValue& params, const ParameterReader& reader)
   requireStruct(params, "publish", "tf, odom, state, applied_wrench, body_services, per_body_topics (true or false)");
   requireStruct(params, "noise", "position_stddev, orientation_stddev, linear_velocity_stddev, angular_velocity_stddev, seed, delay");
   requireStruct(params, "contact", "iterations, iterations_dt, position_iterations, restitution_threshold, penetration_slop, "
-                                   "position_correction, event_location, continuous, sleep, sleep_time");
+                                   "position_correction, event_location, continuous, sleep, sleep_time, reuse_points");
   readSchemaParameters(params, config);
   readTiming(params, config);
   config.world_frame = readFrame(params, "world_frame", config.world_frame);
