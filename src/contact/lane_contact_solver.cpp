@@ -82,6 +82,7 @@ struct LaneContactSolver::Buffers {
   std::vector<ManifoldLanes<Lanes>> four;
   std::vector<ManifoldLanes<EightLanes>> eight;
   std::vector<LaneBodyVelocity> bodies;  // 0: the environment (a copy, at rest); then the block's bodies
+  std::vector<std::size_t> order;        // packGroups' scratch
   IslandSweeps islands;
 };
 
@@ -92,23 +93,32 @@ LaneContactSolver& LaneContactSolver::operator=(LaneContactSolver&&) noexcept = 
 
 namespace {
 
-// The colouring's manifolds in groups of kLaneCount<T>, colour by colour; an overflow manifold alone.
+// The colouring's manifolds in groups of kLaneCount<T>, colour by colour; an overflow manifold alone. Within
+// a colour no two manifolds share a body (but the environment's, never written back), so their order there
+// changes no result: taken most points first, a group's lanes hold manifolds of one size, and its slots are
+// not spent on lanes with no point in them (a sphere's one point beside a face's four). `order` is scratch.
 template <class T>
 void packGroups(const ManifoldColouring& colouring, const std::vector<SolverContact>& contacts,
-                std::size_t body_base, std::vector<ManifoldLanes<T>>& groups) {
+                std::size_t body_base, std::vector<std::size_t>& order, std::vector<ManifoldLanes<T>>& groups) {
   constexpr std::size_t kWidth = kLaneCount<T>;
   const auto local = [&](std::size_t s) { return static_cast<std::uint32_t>(s == kEnvironment ? 0 : s - body_base + 1); };
   const std::vector<Manifold>& manifolds = colouring.manifolds();
   groups.clear();
   for (std::size_t colour = 0; colour <= ManifoldColouring::kColours; ++colour) {
     const std::size_t width = colour == ManifoldColouring::kColours ? 1 : kWidth;
-    const std::size_t end = colouring.colourStart(colour + 1);
-    for (std::size_t m = colouring.colourStart(colour); m < end; m += width) {
+    const std::size_t start = colouring.colourStart(colour), end = colouring.colourStart(colour + 1);
+    order.clear();
+    for (std::size_t count = kMaxManifoldPoints; count >= 1; --count) {
+      for (std::size_t m = start; m < end; ++m) {
+        if (manifolds[m].count == count || (count == 1 && manifolds[m].count == 0)) order.push_back(m);
+      }
+    }
+    for (std::size_t i = 0; i < order.size(); i += width) {
       ManifoldLanes<T>& g = groups.emplace_back();
-      g.lanes = static_cast<std::uint32_t>(std::min(width, end - m));
+      g.lanes = static_cast<std::uint32_t>(std::min(width, order.size() - i));
       g.slots = 0;
       for (std::size_t l = 0; l < g.lanes; ++l) {
-        const Manifold& manifold = manifolds[m + l];
+        const Manifold& manifold = manifolds[order[i + l]];
         const SolverContact& first = contacts[manifold.first];
         g.body_a[l] = local(first.a), g.body_b[l] = local(first.b);
         g.island[l] = manifold.island;
@@ -186,7 +196,7 @@ void LaneContactSolver::solve(std::vector<SolverContact>& contacts, std::vector<
   buffers.bodies.assign(body_end - body_base + 1, LaneBodyVelocity{{0, 0, 0}, {0, 0, 0}, 0.0});
   gatherBodies(bodies, islands, count, body_base, buffers.bodies);
   const auto sweep = [&](auto& groups) {
-    packGroups(colouring_, contacts, body_base, groups);
+    packGroups(colouring_, contacts, body_base, buffers.order, groups);
     runSweepsWidest(lanes.wide_instructions, groups, buffers.bodies.data(), contacts.data(), sweeps, converged,
                     options.iterations);
     unpackGroups(groups, contacts);
