@@ -58,7 +58,9 @@ bool CollisionWorld::faceClippedPairStandsStill(const btPersistentManifold& mani
   const auto m = static_cast<std::size_t>(manifold.m_index1a);
   const auto a = static_cast<std::size_t>(manifold.getBody0()->getUserIndex());
   const auto b = static_cast<std::size_t>(manifold.getBody1()->getUserIndex());
-  if (m >= impl_->pair_reuse.size() || !faceClippedPair(proxyType(a), proxyType(b))) return false;
+  // Points are stored only by a face-clipped pair or a box pair (whose dispatch skips nothing either way),
+  // so a place that holds this pair's needs no look at its shapes' types.
+  if (m >= impl_->pair_reuse.size() || !impl_->pair_reuse[m].holds(a, b)) return false;
   const HullFaces *hull_a = nullptr, *hull_b = nullptr;
   const Eigen::Isometry3d *X_WA = nullptr, *X_WB = nullptr;
   facedShape(a, &hull_a, &X_WA), facedShape(b, &hull_b, &X_WB);

@@ -10,18 +10,19 @@ namespace contact {
 bool PairReuse::standsStill(std::size_t a, std::size_t b, const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_WB,
                             double reach_a, double reach_b, double max_distance) {
   reused_ = false;
-  if (!stored_ || a != a_ || b != b_ || max_distance != max_distance_) return false;
-  const Eigen::Matrix3d R_AW = X_WA.linear().transpose();
-  const Eigen::Matrix3d R_AB = R_AW * X_WB.linear();
-  const Eigen::Vector3d p_AB = R_AW * (X_WB.translation() - X_WA.translation());
-  // b's origin moved by p − p₀ in a's frame; a's origin in b's frame is −Rᵀp, and moved by R₀ᵀp₀ − Rᵀp.
-  const double turned = (R_AB - R_AB_).norm();
-  const auto moved = [turned](double reach, double shift) {
-    return std::isfinite(reach) ? turned * reach + shift : std::numeric_limits<double>::infinity();
-  };
-  const double b_seen_from_a = moved(reach_b, (p_AB - p_AB_).norm());
-  const double a_seen_from_b = moved(reach_a, (R_AB_.transpose() * p_AB_ - R_AB.transpose() * p_AB).norm());
-  reused_ = std::min(b_seen_from_a, a_seen_from_b) <= kReuseShare * max_distance;
+  if (!holds(a, b) || max_distance != max_distance_) return false;
+  const double bound = kReuseShare * max_distance;
+  // Each way round the bound is at least how far the other shape's origin moved (b's in a's frame, a's in
+  // b's): a pair whose origins both moved farther, as every moving pair's do, is refused before the turn is
+  // formed. An infinite reach leaves that way out.
+  const Eigen::Vector3d d = X_WB.translation() - X_WA.translation();
+  const Eigen::Vector3d p_AB = X_WA.linear().transpose() * d, p_BA = -(X_WB.linear().transpose() * d);
+  const double infinity = std::numeric_limits<double>::infinity();
+  const double shift_b = std::isfinite(reach_b) ? (p_AB - p_AB_).norm() : infinity;
+  const double shift_a = std::isfinite(reach_a) ? (p_BA - p_BA_).norm() : infinity;
+  if (!(std::min(shift_a, shift_b) <= bound)) return false;
+  const double turned = (X_WA.linear().transpose() * X_WB.linear() - R_AB_).norm();
+  reused_ = std::min(turned * reach_b + shift_b, turned * reach_a + shift_a) <= bound;
   return reused_;
 }
 
@@ -48,9 +49,11 @@ void PairReuse::store(std::size_t a, std::size_t b, const Eigen::Isometry3d& X_W
     if (points[i].normal != points[first].normal || points[i].speculative || points[i].a != a || points[i].b != b) return;
   }
   const Eigen::Matrix3d R_AW = X_WA.linear().transpose();
+  const Eigen::Vector3d d = X_WB.translation() - X_WA.translation();
   R_AB_ = R_AW * X_WB.linear();
-  p_AB_ = R_AW * (X_WB.translation() - X_WA.translation());
-  if (!R_AB_.allFinite() || !p_AB_.allFinite()) return;
+  p_AB_ = R_AW * d;
+  p_BA_ = -(X_WB.linear().transpose() * d);
+  if (!R_AB_.allFinite() || !p_AB_.allFinite() || !p_BA_.allFinite()) return;
   const Eigen::Isometry3d X_AW = X_WA.inverse(), X_BW = X_WB.inverse();
   normal_A_ = count > 0 ? Eigen::Vector3d(R_AW * points[first].normal) : Eigen::Vector3d::UnitZ();
   for (std::size_t i = 0; i < count; ++i) {

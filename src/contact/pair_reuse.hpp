@@ -44,6 +44,9 @@ class PairReuse {
   void store(std::size_t a, std::size_t b, const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_WB,
              double max_distance, const std::vector<ContactPoint>& points, std::size_t first);
 
+  /// Whether points are stored for the pair (a, b), in that order.
+  bool holds(std::size_t a, std::size_t b) const { return stored_ && a == a_ && b == b_; }
+
   /// Whether the last standsStill() since forget() said yes.
   bool reused() const { return reused_; }
   void forget() { reused_ = false; }
@@ -54,6 +57,7 @@ class PairReuse {
   double max_distance_ = 0.0;
   Eigen::Matrix3d R_AB_ = Eigen::Matrix3d::Identity();  // b's shape in a's, when the points were made
   Eigen::Vector3d p_AB_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d p_BA_ = Eigen::Vector3d::Zero();       // a's origin in b's frame, then
   Eigen::Vector3d normal_A_ = Eigen::Vector3d::UnitZ();  // from b towards a, in a's frame
   std::size_t count_ = 0;
   std::array<Eigen::Vector3d, 4> on_a_A_, on_b_B_;  // each point's witnesses, in their own shape's frame
