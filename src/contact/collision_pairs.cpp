@@ -23,19 +23,20 @@ const CollisionShape* CollisionWorld::facedShape(std::size_t object, const HullF
   const bool body = isBody(object);
   const CollisionShape& shape = body ? impl_->body_shapes[object] : impl_->environment_shapes[object - bodyCount()];
   *hull = shape.type == ShapeType::kMesh ? &impl_->hull_faces[object] : nullptr;
-  *X_WS = body ? &impl_->shape_poses[object] : &shape.pose;
+  *X_WS = &shapePose(object);
   return &shape;
+}
+
+const Eigen::Isometry3d& CollisionWorld::shapePose(std::size_t object) const {
+  return isBody(object) ? impl_->shape_poses[object] : impl_->environment_shapes[object - bodyCount()].pose;
 }
 
 bool CollisionWorld::addFacePoints(const btPersistentManifold& manifold, double max_distance, PairReuse& reuse,
                                    PairScratch& scratch, std::vector<ContactPoint>& points) {
   const auto a = static_cast<std::size_t>(manifold.getBody0()->getUserIndex());
   const auto b = static_cast<std::size_t>(manifold.getBody1()->getUserIndex());
-  const HullFaces *hull_a = nullptr, *hull_b = nullptr;
-  const Eigen::Isometry3d *X_WA = nullptr, *X_WB = nullptr;
-  if (reuse.reused()) {  // the dispatcher skipped its query (faceClippedPairStandsStill)
-    facedShape(a, &hull_a, &X_WA), facedShape(b, &hull_b, &X_WB);
-    reuse.appendPoints(*X_WA, *X_WB, max_distance, points);
+  if (reuse.reused()) {  // the dispatcher skipped its query (pairStandsStill)
+    reuse.appendPoints(shapePose(a), shapePose(b), max_distance, points);
     return true;
   }
   // The one query's point (the deepest, should the manifold hold more) gives the normal.
@@ -47,25 +48,19 @@ bool CollisionWorld::addFacePoints(const btPersistentManifold& manifold, double 
   const ContactPoint query = pointFrom(manifold.getContactPoint(deepest), manifold.getBody0(), manifold.getBody1());
   const std::size_t first = points.size();
   if (!addFacePoints(query, max_distance, scratch, points)) return false;
-  if (impl_->reuse_points) {
-    facedShape(a, &hull_a, &X_WA), facedShape(b, &hull_b, &X_WB);
-    reuse.store(a, b, *X_WA, *X_WB, max_distance, points, first);
-  }
+  if (impl_->reuse_points) reuse.store(a, b, shapePose(a), shapePose(b), max_distance, points, first);
   return true;
 }
 
-bool CollisionWorld::faceClippedPairStandsStill(const btPersistentManifold& manifold, double max_distance) {
+bool CollisionWorld::pairStandsStill(const btPersistentManifold& manifold, double max_distance) {
   const auto m = static_cast<std::size_t>(manifold.m_index1a);
   const auto a = static_cast<std::size_t>(manifold.getBody0()->getUserIndex());
   const auto b = static_cast<std::size_t>(manifold.getBody1()->getUserIndex());
-  // Points are stored only by a face-clipped pair or a box pair (whose dispatch skips nothing either way),
-  // so a place that holds this pair's needs no look at its shapes' types.
+  // Points are stored only by a face-clipped pair or a box pair, so a place that holds this pair's needs no
+  // look at its shapes' types.
   if (m >= impl_->pair_reuse.size() || !impl_->pair_reuse[m].holds(a, b)) return false;
-  const HullFaces *hull_a = nullptr, *hull_b = nullptr;
-  const Eigen::Isometry3d *X_WA = nullptr, *X_WB = nullptr;
-  facedShape(a, &hull_a, &X_WA), facedShape(b, &hull_b, &X_WB);
-  return impl_->pair_reuse[m].standsStill(a, b, *X_WA, *X_WB, impl_->shape_reach[a], impl_->shape_reach[b],
-                                          max_distance);
+  return impl_->pair_reuse[m].standsStill(a, b, shapePose(a), shapePose(b), impl_->shape_reach[a],
+                                          impl_->shape_reach[b], max_distance);
 }
 
 int CollisionWorld::proxyType(std::size_t object) const {
@@ -132,16 +127,12 @@ bool CollisionWorld::addBoxPoints(const btPersistentManifold& manifold, double m
   const auto a = static_cast<std::size_t>(object_a->getUserIndex());
   const auto b = static_cast<std::size_t>(object_b->getUserIndex());
   if (!boxPair(a, b) || !impl_->dispatcher.testsPair(object_a, object_b)) return false;
-  const HullFaces *hull_a = nullptr, *hull_b = nullptr;
-  const Eigen::Isometry3d *X_WA = nullptr, *X_WB = nullptr;
-  facedShape(a, &hull_a, &X_WA), facedShape(b, &hull_b, &X_WB);
   const std::size_t first = points.size();
-  if (impl_->reuse_points &&
-      reuse.standsStill(a, b, *X_WA, *X_WB, impl_->shape_reach[a], impl_->shape_reach[b], max_distance)) {
-    reuse.appendPoints(*X_WA, *X_WB, max_distance, points);
+  if (reuse.reused()) {  // decided in the dispatch (pairStandsStill), as for a queried pair
+    reuse.appendPoints(shapePose(a), shapePose(b), max_distance, points);
   } else {
     addBoxPoints(a, b, max_distance, scratch, points);
-    if (impl_->reuse_points) reuse.store(a, b, *X_WA, *X_WB, max_distance, points, first);
+    if (impl_->reuse_points) reuse.store(a, b, shapePose(a), shapePose(b), max_distance, points, first);
   }
   return points.size() > first;
 }

@@ -177,7 +177,7 @@ void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distan
   for (PairReuse& pair : impl_->pair_reuse) pair.forget();
   if (impl_->reuse_points) {
     dispatcher.stands_still = [this, max_distance](const btPersistentManifold& manifold) {
-      return faceClippedPairStandsStill(manifold, max_distance);
+      return pairStandsStill(manifold, max_distance);
     };
   }
   impl_->world.performDiscreteCollisionDetection();

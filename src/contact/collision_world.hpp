@@ -138,6 +138,8 @@ class CollisionWorld {
   /// The shape of an object whose faces give its contact points (faceClippedPair in collision_world_impl.hpp
   /// decides which), with its hull's faces (kMesh) and its pose.
   const CollisionShape* facedShape(std::size_t object, const HullFaces** hull, const Eigen::Isometry3d** X_WS) const;
+  /// Where an object's shape stands (X_WS): a body's as last placed, the environment's own.
+  const Eigen::Isometry3d& shapePose(std::size_t object) const;
   /// Bullet's shape type of an object (its proxy type), or −1 for a half-space (not in Bullet's world).
   int proxyType(std::size_t object) const;
   /// The pair's faces along the query's normal, clipped (face_manifold.hpp): their points up to
@@ -149,12 +151,13 @@ class CollisionWorld {
   bool addFacePoints(const ContactPoint& query, double max_distance, PairScratch& scratch,
                      std::vector<ContactPoint>& points);
   /// The manifold's: with `reuse`, the points kept there when the dispatcher found the pair had not moved
-  /// (faceClippedPairStandsStill), else made from its query and kept there.
+  /// (pairStandsStill), else made from its query and kept there.
   bool addFacePoints(const btPersistentManifold& manifold, double max_distance, PairReuse& reuse,
                      PairScratch& scratch, std::vector<ContactPoint>& points);
-  /// Whether a face-clipped pair's points from its last detection stand (pair_reuse.hpp): the dispatcher
-  /// then skips its query.
-  bool faceClippedPairStandsStill(const btPersistentManifold& manifold, double max_distance);
+  /// Whether a pair's points from its last detection stand (pair_reuse.hpp), asked by the dispatcher before
+  /// the pair's narrow phase: a queried pair's query is then skipped, and the detection gives back the
+  /// points kept (addFacePoints, addBoxPoints).
+  bool pairStandsStill(const btPersistentManifold& manifold, double max_distance);
   /// Whether both objects are boxes.
   bool boxPair(std::size_t a, std::size_t b) const;
   /// Two boxes: their points within max_distance by face clipping along their best separating axis
@@ -163,7 +166,8 @@ class CollisionWorld {
   /// not test (asleep, or beyond the near distance).
   bool addBoxPoints(std::size_t a, std::size_t b, double max_distance, PairScratch& scratch,
                     std::vector<ContactPoint>& points);
-  /// With `reuse`, the points kept there for the pair when it has not moved (else made and kept there).
+  /// With `reuse`, the points kept there when the dispatcher found the pair had not moved (pairStandsStill),
+  /// else made and kept there.
   bool addBoxPoints(const btPersistentManifold& manifold, double max_distance, PairReuse& reuse, PairScratch& scratch,
                     std::vector<ContactPoint>& points);
   /// A body on an environment mesh: for each triangle that holds a point of the manifold, the body's face

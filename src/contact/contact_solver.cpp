@@ -86,7 +86,7 @@ void prepareContactRows(std::vector<SolverContact>& contacts, const std::vector<
       c.tangent_mass.setZero();
     }
     // Newton's law: the normal speed after is −e times the speed before, for approaches fast enough to bounce.
-    const double approach = c.n.dot(a.v + a.w.cross(c.r_a) - b.v - b.w.cross(c.r_b));
+    const double approach = c.n.dot(relativeVelocity(c, bodies));
     c.target_speed = 0.0;
     if (options.bounce && approach < -options.restitution_threshold) c.target_speed = -c.restitution * approach;
     // Speculative: a contact still apart may close its gap, but no more, within the next step.

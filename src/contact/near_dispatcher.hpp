@@ -29,8 +29,8 @@ struct NearDispatcher : btCollisionDispatcher {
   ThreadPool* pool = nullptr;
   std::size_t pairs_per_block = 64;
   /// Asked, on the caller, of a convex pair that has its manifold: whether the points it gave last time still
-  /// stand (pair_reuse.hpp); its query is then skipped and its manifold left empty. Empty: every pair is
-  /// queried.
+  /// stand (pair_reuse.hpp); its narrow phase is then skipped and its manifold left empty. Empty: every pair
+  /// is queried.
   std::function<bool(const btPersistentManifold&)> stands_still;
 
   /// Every overlapping pair of the broad phase, in its order: those that need one get their algorithm (and a
