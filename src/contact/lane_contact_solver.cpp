@@ -110,7 +110,7 @@ void packGroups(const ManifoldColouring& colouring, const std::vector<SolverCont
     order.clear();
     for (std::size_t count = kMaxManifoldPoints; count >= 1; --count) {
       for (std::size_t m = start; m < end; ++m) {
-        if (manifolds[m].count == count || (count == 1 && manifolds[m].count == 0)) order.push_back(m);
+        if (manifolds[m].count == count) order.push_back(m);  // 1 to kMaxManifoldPoints (manifoldLength)
       }
     }
     for (std::size_t i = 0; i < order.size(); i += width) {
