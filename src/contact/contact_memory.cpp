@@ -5,6 +5,8 @@
 #include "contact_step.hpp"
 
 #include <algorithm>
+#include <new>
+#include <tuple>
 
 namespace rigid_body {
 namespace contact {
@@ -42,7 +44,10 @@ void ContactStep::addContact(const ContactPoint& point, const SceneBodies& bodie
 void ContactStep::makeContact(const ContactPoint& point, const SceneBodies& bodies, bool resting, PairLookup& lookup,
                               SolverContact& c, std::pair<Eigen::Vector3d, Eigen::Vector3d>& anchors) const {
   const std::size_t a = c.a, b = c.b;
-  c = SolverContact();
+  // Default-initialised in place: its members' own initialisers. `c = SolverContact()` zeroed a whole
+  // temporary (the products prepareContactRows writes too) and copied it over.
+  c.~SolverContact();
+  ::new (static_cast<void*>(&c)) SolverContact;
   c.a = a, c.b = b;
   if (c.a != kEnvironment) c.r_a = point.on_a - bodies.states[colliders_[point.a]].p_WB;
   if (c.b != kEnvironment) c.r_b = point.on_b - bodies.states[colliders_[point.b]].p_WB;
@@ -94,7 +99,11 @@ const ContactStep::WarmPoint* ContactStep::warmStart(SolverContact& c, const Con
                                                      const SceneBodies& bodies, PairLookup& lookup) const {
   const std::uint64_t key = pairKey(point.a, point.b);
   if (key != lookup.warm_key) {
-    const auto [begin, end] = warm_runs_.find(key);
+    // The pairs come mostly in last step's order: a pair's run often begins where the one looked up before
+    // it ended (a run's first entry: the one before it is another pair's). Else the index's hash table.
+    std::size_t begin = lookup.warm_end, end = begin;
+    while (end < warm_.size() && warm_[end].key == key) ++end;
+    if (end == begin || (begin > 0 && warm_[begin - 1].key == key)) std::tie(begin, end) = warm_runs_.find(key);
     lookup.warm_key = key;
     lookup.warm_begin = begin;
     lookup.warm_end = end;

@@ -218,6 +218,9 @@ class ContactStep {
   std::vector<std::size_t> admitted_;  // scratch: the points the resting solve takes
   std::vector<std::pair<std::size_t, std::size_t>> admitted_links_;  // their objects
   std::vector<std::size_t> island_body_start_;  // per island: its first solver body (then one past the last)
+  // Per island of the last resting solve: whether every impulse, normal and lever arm it ended with is
+  // finite (found by finishBlock while its contacts are at hand; a step with one that is not is refused).
+  std::vector<char> island_finite_;
   bool wide_lanes_ = true;
   ThreadPool* pool_ = nullptr;  // the scene's, for the islands; set for the duration of a step
   std::size_t bodies_per_block_ = 64;  // the free steps' blocks on the pool; set with pool_

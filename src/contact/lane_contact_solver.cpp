@@ -93,6 +93,17 @@ LaneContactSolver& LaneContactSolver::operator=(LaneContactSolver&&) noexcept = 
 
 namespace {
 
+// A reused group made ready for its manifolds: its face's K⁺ not yet looked for, and the point slots below
+// g.slots that not every lane fills (slots [fewest, g.slots)) zero in every lane, as an empty lane reads
+// (PointLanes::present); the loads then write every field of the lanes they fill. Slots from g.slots on
+// are never read.
+template <class T>
+void clearUnfilled(ManifoldLanes<T>& g, std::size_t fewest) {
+  for (std::size_t p = fewest; p < g.slots; ++p) g.point[p] = PointLanes<T>{};
+  for (std::size_t e = 0; e < kJointEntries; ++e) g.inverse[e] = T{};
+  g.inverted = T{}, g.joint = T{};
+}
+
 // The colouring's manifolds in groups of kLaneCount<T>, colour by colour; an overflow manifold alone. Within
 // a colour no two manifolds share a body (but the environment's, never written back), so their order there
 // changes no result: taken most points first, a group's lanes hold manifolds of one size, and its slots are
@@ -103,7 +114,7 @@ void packGroups(const ManifoldColouring& colouring, const std::vector<SolverCont
   constexpr std::size_t kWidth = kLaneCount<T>;
   const auto local = [&](std::size_t s) { return static_cast<std::uint32_t>(s == kEnvironment ? 0 : s - body_base + 1); };
   const std::vector<Manifold>& manifolds = colouring.manifolds();
-  groups.clear();
+  std::size_t used = 0;  // the groups filled so far: the vector keeps its groups from solve to solve
   for (std::size_t colour = 0; colour <= ManifoldColouring::kColours; ++colour) {
     const std::size_t width = colour == ManifoldColouring::kColours ? 1 : kWidth;
     const std::size_t start = colouring.colourStart(colour), end = colouring.colourStart(colour + 1);
@@ -114,9 +125,13 @@ void packGroups(const ManifoldColouring& colouring, const std::vector<SolverCont
       }
     }
     for (std::size_t i = 0; i < order.size(); i += width) {
-      ManifoldLanes<T>& g = groups.emplace_back();
+      if (used == groups.size()) groups.emplace_back();
+      ManifoldLanes<T>& g = groups[used++];
       g.lanes = static_cast<std::uint32_t>(std::min(width, order.size() - i));
-      g.slots = 0;
+      // Most points first: the group's first lane has the most, its last the fewest.
+      g.slots = static_cast<std::uint32_t>(manifolds[order[i]].count);
+      const std::size_t fewest = g.lanes == kWidth ? manifolds[order[i + g.lanes - 1]].count : 0;
+      clearUnfilled(g, fewest);
       for (std::size_t l = 0; l < g.lanes; ++l) {
         const Manifold& manifold = manifolds[order[i + l]];
         const SolverContact& first = contacts[manifold.first];
@@ -124,11 +139,11 @@ void packGroups(const ManifoldColouring& colouring, const std::vector<SolverCont
         g.island[l] = manifold.island;
         g.first_contact[l] = manifold.first;
         g.count[l] = static_cast<std::uint32_t>(manifold.count);
-        g.slots = std::max(g.slots, manifold.count);
         for (std::size_t p = 0; p < manifold.count; ++p) loadPoint(g.point[p], l, contacts[manifold.first + p]);
       }
     }
   }
+  groups.resize(used);
 }
 
 // The impulses back into the contacts.

@@ -158,6 +158,18 @@ void SolverIslands::noteOutcome(std::size_t island, StickingOutcome outcome) {
   }
 }
 
+std::size_t SolverIslands::takeScratch() {
+  const std::lock_guard<std::mutex> lock(scratch_mutex_);
+  const std::size_t slot = free_scratch_.back();
+  free_scratch_.pop_back();
+  return slot;
+}
+
+void SolverIslands::giveBackScratch(std::size_t slot) {
+  const std::lock_guard<std::mutex> lock(scratch_mutex_);
+  free_scratch_.push_back(slot);
+}
+
 void SolverIslands::forEachBlock(ThreadPool* pool, const BlockWork& work) const {
   const auto run = [&](std::size_t block) { work(block, block == 0 ? 0 : block_end_[block - 1], block_end_[block]); };
   if (pool != nullptr && pool->threads() > 1 && block_end_.size() > 1) {
@@ -200,8 +212,11 @@ void SolverIslands::solve(std::vector<SolverContact>& contacts, std::vector<Solv
   };
   ranges_.resize(count);
   for (std::size_t island = 0; island < count; ++island) ranges_[island] = rangeOf(island);
-  if (block_solvers_.size() < block_end_.size()) block_solvers_.resize(block_end_.size());
-  if (block_sticking_.size() < block_end_.size()) block_sticking_.resize(block_end_.size());
+  // As many scratches as threads may run blocks at once (made before, so none moves while in use).
+  const std::size_t at_once = pool != nullptr && block_end_.size() > 1 ? pool->threads() : 1;
+  if (scratch_.size() < at_once) scratch_.resize(at_once);
+  free_scratch_.clear();
+  for (std::size_t slot = scratch_.size(); slot-- > 0;) free_scratch_.push_back(slot);
   tried_at_once_.assign(block_end_.size(), 0);
   const bool large_prepared = prepareLargeIslands(contacts, bodies, shared.options, pool, hooks);
   // A block's islands are filled, prepared, swept together in the lanes, and finished one by one.
@@ -215,17 +230,20 @@ void SolverIslands::solve(std::vector<SolverContact>& contacts, std::vector<Solv
         prepareContacts(contacts, bodies, shared.options, ranges_[island]);
       }
     }
-    block_solvers_[block].solve(contacts, bodies, shared.options, ranges_.data() + begin, end - begin,
-                                island_converged_.data() + begin, shared.lanes);
+    const std::size_t slot = takeScratch();
+    BlockScratch& scratch = scratch_[slot];
+    scratch.lanes.solve(contacts, bodies, shared.options, ranges_.data() + begin, end - begin,
+                        island_converged_.data() + begin, shared.lanes);
     // What the sweeps left unconverged, or converged only beyond the sweeps asked for, at once.
     for (std::size_t island = begin; island < end; ++island) {
       if (island_converged_[island] == kConvergedInSweeps || waitsToSolveAtOnce(island)) continue;
       const StickingOutcome outcome = solveStickingIsland(contacts, bodies, ranges_[island], shared.options.dt,
-                                                          slidingSpeed(shared), block_sticking_[block]);
+                                                          slidingSpeed(shared), scratch.sticking);
       noteOutcome(island, outcome);
       if (outcome != StickingOutcome::kNotTried) ++tried_at_once_[block];
       if (outcome == StickingOutcome::kSolved) island_converged_[island] = kConvergedInSweeps;
     }
+    giveBackScratch(slot);
     for (std::size_t island = begin; island < end; ++island) {
       finishRestingContacts(contacts, bodies, shared, ranges_[island], lift_share_);
     }

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <utility>
+#include <mutex>
 #include <vector>
 
 #include "contact_solver.hpp"
@@ -132,8 +133,18 @@ class SolverIslands {
   std::vector<char> island_converged_;
   std::vector<std::size_t> block_end_;          // islands [block_end_[b−1], block_end_[b]) form block b (group())
   std::vector<SolveRange> ranges_;              // per island
-  std::vector<LaneContactSolver> block_solvers_;  // per block: its lanes' buffers, kept between steps
-  std::vector<StickingScratch> block_sticking_;    // per block: its direct solves' lists
+  // What a block's solve works in: its lanes' buffers and its direct solves' lists, nothing that outlives
+  // the block. The blocks share as many as run at once (one per thread), each taken from free_scratch_ and
+  // given back, so that one thread's blocks reuse memory still in its caches; kept between steps.
+  struct BlockScratch {
+    LaneContactSolver lanes;
+    StickingScratch sticking;
+  };
+  std::vector<BlockScratch> scratch_;
+  std::vector<std::size_t> free_scratch_;  // indices into scratch_, under scratch_mutex_
+  std::mutex scratch_mutex_;
+  std::size_t takeScratch();
+  void giveBackScratch(std::size_t slot);
   std::vector<double> lift_share_;              // per solver body
   std::vector<std::pair<std::size_t, std::size_t>> large_runs_;  // scratch: runs of the large islands' contacts
 };
