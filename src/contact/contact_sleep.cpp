@@ -143,6 +143,7 @@ void ContactStep::updateSleep(SceneBodies& bodies, double h) {
 void ContactStep::setAsideSleepingPairs() {
   restoreWokenPairs();  // a pair stays in one place or the other
   moveWhere(touching_, asleep_touching_, [&](std::uint64_t key) { return sleepingPair(key); });  // still sorted
+  indexTouching();
   moveWhere(warm_, asleep_warm_, [&](const WarmPoint& w) { return sleepingPair(w.key); });
   indexWarmPoints();
 }
@@ -153,6 +154,7 @@ void ContactStep::restoreWokenPairs() {
   moveWhere(asleep_touching_, touching_, [&](std::uint64_t key) { return !sleepingPair(key); });
   std::sort(touching_.begin(), touching_.end());
   touching_.erase(std::unique(touching_.begin(), touching_.end()), touching_.end());
+  indexTouching();
   moveWhere(asleep_warm_, warm_, [&](const WarmPoint& w) { return !sleepingPair(w.key); });
   indexWarmPoints();
 }

@@ -80,7 +80,12 @@ std::uint64_t ContactStep::pairKey(std::size_t a, std::size_t b) const {
 }
 
 bool ContactStep::wasTouching(std::uint64_t key) const {
-  return std::binary_search(touching_.begin(), touching_.end(), key);
+  const auto [begin, end] = touching_index_.find(key);
+  return end > begin;
+}
+
+void ContactStep::indexTouching() {
+  touching_index_.build(touching_.size(), [&](std::size_t i) { return touching_[i]; });
 }
 
 bool ContactStep::wasTouching(std::uint64_t key, PairLookup& lookup) const {
@@ -192,6 +197,7 @@ void ContactStep::restart(const std::vector<State>& states) {
   for (const ContactPoint& point : points_) touching_.push_back(pairKey(point.a, point.b));
   std::sort(touching_.begin(), touching_.end());
   touching_.erase(std::unique(touching_.begin(), touching_.end()), touching_.end());
+  indexTouching();
   for (auto& list : contacts_) list.clear();
   impacts_.clear();
   statistics_ = ContactStatistics();
@@ -273,6 +279,7 @@ void ContactStep::stepWhole(SceneBodies& bodies, const std::vector<char>& runnin
     for (auto& list : contacts_) list.clear();
     ++statistics_.refused_steps;
     touching_.clear();
+    indexTouching();
     warm_.clear();
     warm_runs_.clear();
     asleep_touching_.clear();
@@ -450,6 +457,7 @@ void ContactStep::rememberTouching() {
   }
   std::sort(touching_.begin(), touching_.end());
   touching_.erase(std::unique(touching_.begin(), touching_.end()), touching_.end());
+  indexTouching();
 }
 
 }  // namespace contact

@@ -252,7 +252,11 @@ class ContactStep {
   std::vector<State> start_;
   std::vector<ContactPoint> points_, pair_points_;
   std::vector<char> moving_;  // scratch of detectPoints: per collider, whether it moves more than the slop
+  // touching_: the pairs touching at the end of the last step, sorted; touching_index_ finds them (built by
+  // indexTouching wherever touching_ changes, before anything looks a pair up, on any thread).
   std::vector<std::uint64_t> touching_, engaged_;
+  PairRuns touching_index_;
+  void indexTouching();
   std::vector<int> engagement_;             // engaged pairs per colliding body
   std::vector<Candidate> candidates_;
   std::vector<SolverBody> solver_bodies_;

@@ -90,12 +90,16 @@ RIGID_BODY_LANE_INLINE T laneRoot(T v) {
 template <class T>
 RIGID_BODY_LANE_INLINE void frictionOntoDiscLanes(LaneMask<T> outside, const T& k00, const T& k01, const T& k11,
                                                   const T& limit, T& f1, T& f2) {
+  LaneMask<T> active = outside & (limit > 0.0);
+  if (!anyLane(active)) {  // no normal impulse in any lane outside: their discs are points
+    f1 = laneSelect<T>(outside, T{}, f1), f2 = laneSelect<T>(outside, T{}, f2);
+    return;
+  }
   const T half_trace = 0.5 * (k00 + k11), half_gap = 0.5 * (k00 - k11);
   const T k_min = half_trace - laneRoot<T>(half_gap * half_gap + k01 * k01);
   const T kf1 = k00 * f1 + k01 * f2, kf2 = k01 * f1 + k11 * f2;
   const T norm = laneRoot<T>(f1 * f1 + f2 * f2);
   T lambda = laneSelect<T>(k_min > 0.0, laneMax<T>(T{}, k_min * (norm / limit - 1.0)), 1e-12 * half_trace);
-  LaneMask<T> active = outside & (limit > 0.0);
   T g1{}, g2{}, r{};
   for (int i = 0; i < 40 && anyLane(active); ++i) {
     const T m00 = k00 + lambda, m11 = k11 + lambda, det = m00 * m11 - k01 * k01;
