@@ -28,21 +28,22 @@ constexpr double kStartingFriction = 0.5;
 
 }  // namespace
 
-void ContactStep::addContact(const ContactPoint& point, const SceneBodies& bodies, bool resting) {
+void ContactStep::addContact(const ContactPoint& point, const SceneBodies& bodies) {
   SolverContact c;
   c.a = solverIndex(bodies, point.a);
   c.b = solverIndex(bodies, point.b);
   restoreWokenPairs();  // solverIndex may have woken a sleeping body
   std::pair<Eigen::Vector3d, Eigen::Vector3d> anchors;
   PairLookup lookup;
-  makeContact(point, bodies, resting, lookup, c, anchors);
+  makeContact(point, bodies, false, lookup, c, anchors, nullptr);
   solver_contacts_.push_back(c);
   solver_points_.push_back(&point);
   solver_anchors_.push_back(anchors);
 }
 
-void ContactStep::makeContact(const ContactPoint& point, const SceneBodies& bodies, bool resting, PairLookup& lookup,
-                              SolverContact& c, std::pair<Eigen::Vector3d, Eigen::Vector3d>& anchors) const {
+void ContactStep::makeContact(const ContactPoint& point, const SceneBodies& bodies, bool touching, PairLookup& lookup,
+                              SolverContact& c, std::pair<Eigen::Vector3d, Eigen::Vector3d>& anchors,
+                              Eigen::Vector3d* local) const {
   const std::size_t a = c.a, b = c.b;
   // Default-initialised in place: its members' own initialisers. `c = SolverContact()` zeroed a whole
   // temporary (the products prepareContactRows writes too) and copied it over.
@@ -58,10 +59,12 @@ void ContactStep::makeContact(const ContactPoint& point, const SceneBodies& bodi
   c.friction = material.friction;
   // A pair that was already touching rests or slides: it does not bounce again. A speculative point is not
   // touching: its impulse stops an arrival, so the step does not move its body on by c h Δv (solver_islands).
-  const bool touching = resting && wasTouching(pairKey(point.a, point.b), lookup);
   c.sustained = touching && !point.speculative;
   c.restitution = c.sustained ? 0.0 : material.restitution;
-  const WarmPoint* last = touching ? warmStart(c, point, bodies, lookup) : nullptr;
+  // Where the point sits on its body (a half-space pair's matches by its feature instead): the warm start's
+  // match now, the warm point's place for the next step.
+  if (local != nullptr) *local = point.feature >= 0 ? Eigen::Vector3d::Zero() : localPoint(point, bodies);
+  const WarmPoint* last = touching && local != nullptr ? warmStart(c, point, *local, lookup) : nullptr;
   // A point that stuck last step keeps the anchors where it began to stick, unless one of them has left the
   // point by more than the warm-start match.
   anchors = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
@@ -96,7 +99,7 @@ Eigen::Vector3d ContactStep::localPoint(const ContactPoint& point, const SceneBo
 }
 
 const ContactStep::WarmPoint* ContactStep::warmStart(SolverContact& c, const ContactPoint& point,
-                                                     const SceneBodies& bodies, PairLookup& lookup) const {
+                                                     const Eigen::Vector3d& local, PairLookup& lookup) const {
   const std::uint64_t key = pairKey(point.a, point.b);
   if (key != lookup.warm_key) {
     // The pairs come mostly in last step's order: a pair's run often begins where the one looked up before
@@ -117,7 +120,6 @@ const ContactStep::WarmPoint* ContactStep::warmStart(SolverContact& c, const Con
       if (it->feature == point.feature) best = &*it;
     }
   } else {
-    const Eigen::Vector3d local = localPoint(point, bodies);
     double best_squared = kWarmStartMatch * kWarmStartMatch;
     for (auto it = range.first; it != range.second; ++it) {
       const double squared = (it->local - local).squaredNorm();
@@ -156,8 +158,7 @@ ContactStep::WarmPoint ContactStep::warmPointOf(std::size_t i, const SceneBodies
     anchors = {inObjectFrame(point.a, point.on_a, bodies), inObjectFrame(point.b, point.on_b, bodies)};
   }
   const bool lower_a = point.a < point.b;
-  return {pairKey(point.a, point.b), point.feature,
-          point.feature >= 0 ? Eigen::Vector3d::Zero() : localPoint(point, bodies), c.normal_impulse,
+  return {pairKey(point.a, point.b), point.feature, solver_local_[i], c.normal_impulse,
           (lower_a ? 1.0 : -1.0) * friction, sticking, lower_a ? anchors.first : anchors.second,
           lower_a ? anchors.second : anchors.first};
 }

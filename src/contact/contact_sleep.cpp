@@ -148,8 +148,8 @@ void ContactStep::setAsideSleepingPairs() {
   indexWarmPoints();
 }
 
-void ContactStep::restoreWokenPairs() {
-  if (!woken_) return;
+bool ContactStep::restoreWokenPairs() {
+  if (!woken_) return false;
   woken_ = false;
   moveWhere(asleep_touching_, touching_, [&](std::uint64_t key) { return !sleepingPair(key); });
   std::sort(touching_.begin(), touching_.end());
@@ -157,6 +157,7 @@ void ContactStep::restoreWokenPairs() {
   indexTouching();
   moveWhere(asleep_warm_, warm_, [&](const WarmPoint& w) { return !sleepingPair(w.key); });
   indexWarmPoints();
+  return true;
 }
 
 }  // namespace contact

@@ -330,21 +330,23 @@ void ContactStep::buildSolverLists() {
   startSolverLists();
   admitted_.clear();
   admitted_links_.clear();
+  admitted_touching_.clear();
   PairLookup lookup;
   std::uint64_t admitted_pair = ~std::uint64_t{0};
   for (std::size_t i = 0; i < points_.size(); ++i) {
     const ContactPoint& point = points_[i];
     const std::uint64_t key = pairKey(point.a, point.b);
     // A speculative point (after its pair's others) only with a pair that is admitted.
-    if (point.speculative) {
-      if (key != admitted_pair) continue;
-    } else {
-      if (point.distance > (wasTouching(key, lookup) ? settings_.penetration_slop : 0.0)) continue;
+    if (point.speculative && key != admitted_pair) continue;
+    const bool touching = wasTouching(key, lookup);
+    if (!point.speculative) {
+      if (point.distance > (touching ? settings_.penetration_slop : 0.0)) continue;
       admitted_pair = key;
     }
     statistics_.max_penetration = std::max(statistics_.max_penetration, -point.distance);
     admitted_.push_back(i);
     admitted_links_.emplace_back(point.a, point.b);
+    admitted_touching_.push_back(touching ? 1 : 0);
   }
   // The solver's lists island by island (solver_islands.hpp): a body enters them with its island's first
   // contact, so each island's bodies follow each other too. Numbered here, in order (solverSlot may wake a
@@ -355,12 +357,16 @@ void ContactStep::buildSolverLists() {
   solver_contacts_.resize(count);
   solver_points_.resize(count);
   solver_anchors_.resize(count);
+  solver_touching_.resize(count);
+  solver_local_.resize(count);
   island_body_start_.clear();
   for (std::size_t island = 0; island < islands_.islands(); ++island) {
     island_body_start_.push_back(solver_bodies_.size());
     for (std::size_t j = islands_.islandStart(island); j < islands_.islandStart(island + 1); ++j) {
-      const ContactPoint& point = points_[admitted_[islands_.order()[j]]];
+      const std::size_t admitted = islands_.order()[j];
+      const ContactPoint& point = points_[admitted_[admitted]];
       solver_points_[j] = &point;
+      solver_touching_[j] = admitted_touching_[admitted];
       solver_contacts_[j].a = solverSlot(point.a);
       solver_contacts_[j].b = solverSlot(point.b);
     }
@@ -377,7 +383,8 @@ void ContactStep::fillBodies(const SceneBodies& bodies, std::size_t first_island
 void ContactStep::fillContacts(const SceneBodies& bodies, std::size_t first, std::size_t end) {
   PairLookup lookup;
   for (std::size_t j = first; j < end; ++j) {
-    makeContact(*solver_points_[j], bodies, true, lookup, solver_contacts_[j], solver_anchors_[j]);
+    makeContact(*solver_points_[j], bodies, solver_touching_[j] != 0, lookup, solver_contacts_[j], solver_anchors_[j],
+                &solver_local_[j]);
   }
 }
 
@@ -414,7 +421,11 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
       if (!sleep_.asleep(k)) contacts_[k].clear();  // a sleeping body reports its contacts as it fell asleep
     }
   }
-  restoreWokenPairs();  // the lists may have woken a sleeping body (solverSlot)
+  if (restoreWokenPairs()) {  // the lists woke a sleeping body (solverSlot): its pairs touched
+    for (std::size_t j = 0; j < solver_points_.size(); ++j) {
+      solver_touching_[j] = wasTouching(pairKey(solver_points_[j]->a, solver_points_[j]->b)) ? 1 : 0;
+    }
+  }
   island_finite_.clear();
   if (solver_contacts_.empty()) {
     rememberTouching();

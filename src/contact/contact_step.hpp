@@ -181,8 +181,8 @@ class ContactStep {
   bool woken_ = false;  // an island woke since its pairs were set aside
   void setAsideSleepingPairs();
   // Puts back the pairs of islands woken since (called wherever a wake may just have happened, before
-  // anything looks a pair up).
-  void restoreWokenPairs();
+  // anything looks a pair up); returns whether there were any.
+  bool restoreWokenPairs();
 
   void startSolverLists();
   // A collision object's solver body: solverSlot numbers it (and wakes it if it sleeps), fillSolverBody
@@ -191,10 +191,14 @@ class ContactStep {
   void fillSolverBody(const SceneBodies& bodies, std::size_t s);
   std::size_t solverIndex(const SceneBodies& bodies, std::size_t object);
   // A solver contact from a detected point whose solver bodies c.a, c.b are numbered already, with its warm
-  // start and anchors (`resting`: in the resting solve; a located impact's are not warm-started).
-  void makeContact(const ContactPoint& point, const SceneBodies& bodies, bool resting, PairLookup& lookup,
-                   SolverContact& c, std::pair<Eigen::Vector3d, Eigen::Vector3d>& anchors) const;
-  void addContact(const ContactPoint& point, const SceneBodies& bodies, bool resting);
+  // start and anchors (`touching`: in the resting solve, its pair touching at the end of the last step; a
+  // located impact's are not warm-started, and have no `local`, the point's place on its body for the warm
+  // point it leaves).
+  void makeContact(const ContactPoint& point, const SceneBodies& bodies, bool touching, PairLookup& lookup,
+                   SolverContact& c, std::pair<Eigen::Vector3d, Eigen::Vector3d>& anchors,
+                   Eigen::Vector3d* local) const;
+  // A located impact's contact (not warm-started), appended to the solver's lists.
+  void addContact(const ContactPoint& point, const SceneBodies& bodies);
   // What one solved contact leaves for the next step, and its reports while recording.
   WarmPoint warmPointOf(std::size_t i, const SceneBodies& bodies, double h) const;
   void reportContact(std::size_t i);
@@ -217,6 +221,8 @@ class ContactStep {
   SolverIslands islands_;
   std::vector<std::size_t> admitted_;  // scratch: the points the resting solve takes
   std::vector<std::pair<std::size_t, std::size_t>> admitted_links_;  // their objects
+  std::vector<char> admitted_touching_;  // whether their pairs touched at the end of the last step
+  std::vector<char> solver_touching_;    // the same per solver contact
   std::vector<std::size_t> island_body_start_;  // per island: its first solver body (then one past the last)
   // Per island of the last resting solve: whether every impulse, normal and lever arm it ended with is
   // finite (found by finishBlock while its contacts are at hand; a step with one that is not is refused).
@@ -268,7 +274,9 @@ class ContactStep {
   std::vector<ImpactEvent> impacts_;
   ContactStatistics statistics_;
   Eigen::Vector3d localPoint(const ContactPoint& point, const SceneBodies& bodies) const;
-  const WarmPoint* warmStart(SolverContact& contact, const ContactPoint& point, const SceneBodies& bodies,
+  // The impulses of the point of last step's that `point` matches (`local`: its place on its body, as
+  // localPoint gives it), put in `contact`; that point, or null.
+  const WarmPoint* warmStart(SolverContact& contact, const ContactPoint& point, const Eigen::Vector3d& local,
                              PairLookup& lookup) const;
   // A point between the world and a collision object's own frame (the environment's is the world's).
   Eigen::Vector3d inObjectFrame(std::size_t object, const Eigen::Vector3d& p_W, const SceneBodies& bodies) const;
@@ -278,6 +286,8 @@ class ContactStep {
   std::vector<std::pair<std::uint64_t, std::size_t>> warm_order_;  // scratch of indexWarmPoints
   // Per solver contact: the anchors it carries on a and on b (in those objects' frames); zeros if not anchored.
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> solver_anchors_;
+  // Per solver contact of the resting solve: its point's place on its body (WarmPoint::local).
+  std::vector<Eigen::Vector3d> solver_local_;
 };
 
 }  // namespace contact

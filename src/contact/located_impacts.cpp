@@ -123,7 +123,7 @@ bool ContactStep::resolveImpact(SceneBodies& bodies, Candidate c, double h) {
   solver_anchors_.clear();
   startSolverLists();
   for (const ContactPoint& point : pair_points_) {
-    if (point.distance <= deepest + patch) addContact(point, bodies, false);
+    if (point.distance <= deepest + patch) addContact(point, bodies);
   }
   chain_groups_.assign(1, {0, solver_contacts_.size()});
   if (!solver_contacts_.empty() && combined(c.a, c.b).restitution > 0.0) gatherChain(bodies, c, hi);
@@ -212,7 +212,7 @@ void ContactStep::gatherChain(SceneBodies& bodies, const Candidate& c, double ta
       chain_pairs_.push_back(key);
       world_->pairDistance(body, other, settings_.penetration_slop, &chain_points_);
       const std::size_t begin = solver_contacts_.size();
-      for (const ContactPoint& touching : chain_points_) addContact(touching, bodies, false);
+      for (const ContactPoint& touching : chain_points_) addContact(touching, bodies);
       if (solver_contacts_.size() > begin) chain_groups_.push_back({begin, solver_contacts_.size()});
     }
   }

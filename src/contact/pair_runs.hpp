@@ -18,21 +18,27 @@ class PairRuns {
   /// all follow each other (the caller then sorts the list by key and builds again).
   template <class KeyOf>
   bool build(std::size_t count, KeyOf key_of) {
-    std::size_t capacity = 16;
-    while (capacity < 2 * count) capacity *= 2;  // at most half full: short probes
-    slots_.assign(capacity, Slot{});
-    mask_ = capacity - 1;
+    // The runs first (one pass over the list), then a table for that many: a pair's several entries take
+    // one slot.
+    runs_.clear();
     for (std::size_t begin = 0; begin < count;) {
       const std::uint64_t key = key_of(begin);
       std::size_t end = begin + 1;
       while (end < count && key_of(end) == key) ++end;
-      Slot& slot = slots_[probe(key)];
-      if (slot.key == key) {  // a second run of the same pair
+      runs_.push_back(Slot{key, static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(end)});
+      begin = end;
+    }
+    std::size_t capacity = 16;
+    while (capacity < 2 * runs_.size()) capacity *= 2;  // at most half full: short probes
+    slots_.assign(capacity, Slot{});
+    mask_ = capacity - 1;
+    for (const Slot& run : runs_) {
+      Slot& slot = slots_[probe(run.key)];
+      if (slot.key == run.key) {  // a second run of the same pair
         slots_.clear();
         return false;
       }
-      slot = Slot{key, begin, end};
-      begin = end;
+      slot = run;
     }
     return true;
   }
@@ -41,16 +47,18 @@ class PairRuns {
   std::pair<std::size_t, std::size_t> find(std::uint64_t key) const {
     if (slots_.empty()) return {0, 0};
     const Slot& slot = slots_[probe(key)];
-    return slot.key == key ? std::make_pair(slot.begin, slot.end) : std::make_pair(std::size_t{0}, std::size_t{0});
+    return slot.key == key ? std::make_pair(std::size_t{slot.begin}, std::size_t{slot.end})
+                           : std::make_pair(std::size_t{0}, std::size_t{0});
   }
 
   void clear() { slots_.clear(); }
 
  private:
   static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};  // no pair's key (a product of object counts)
+  // 16 bytes: a run's bounds in 32 bits each (a list of the step's points or pairs, far fewer than 2³²).
   struct Slot {
     std::uint64_t key = kEmpty;
-    std::size_t begin = 0, end = 0;
+    std::uint32_t begin = 0, end = 0;
   };
   // The slot that holds `key`, or the empty one where it would go (Fibonacci hashing: Knuth, TAOCP vol. 3,
   // 6.4, the multiplier 2⁶⁴/φ).
@@ -60,6 +68,7 @@ class PairRuns {
     return i;
   }
   std::vector<Slot> slots_;
+  std::vector<Slot> runs_;  // build's scratch
   std::size_t mask_ = 0;
 };
 
