@@ -72,10 +72,9 @@ void NearDispatcher::dispatchAllCollisionPairs(btOverlappingPairCache* pairs, co
     manifolds.resizeNoInitialize(0);
     pair.m_algorithm->getAllContactManifolds(manifolds);
     const bool convex = a->getCollisionShape()->isConvex() && b->getCollisionShape()->isConvex();
-    if (convex && manifolds.size() == 1 && stands_still && stands_still(*manifolds[0])) continue;
     if (pool != nullptr && convex && manifolds.size() > 0) {
-      pooled_pairs_.push_back(&pair);
-    } else {
+      pooled_pairs_.push_back(&pair);  // its reuse asked on the pool too
+    } else if (!(convex && standsStill(manifolds))) {
       processPair(pair, info, manifolds);
     }
   }
@@ -83,8 +82,18 @@ void NearDispatcher::dispatchAllCollisionPairs(btOverlappingPairCache* pairs, co
   const std::size_t per_block = std::max<std::size_t>(1, pairs_per_block);
   block_manifolds_.resize(std::max<std::size_t>(1, blockCount(count, per_block)));
   forEachRange(pool, count, per_block, [&](std::size_t block, std::size_t first, std::size_t end) {
-    for (std::size_t i = first; i < end; ++i) processPair(*pooled_pairs_[i], info, block_manifolds_[block]);
+    btManifoldArray& manifolds = block_manifolds_[block];
+    for (std::size_t i = first; i < end; ++i) {
+      btBroadphasePair& pair = *pooled_pairs_[i];
+      manifolds.resizeNoInitialize(0);
+      pair.m_algorithm->getAllContactManifolds(manifolds);
+      if (!standsStill(manifolds)) processPair(pair, info, manifolds);
+    }
   });
+}
+
+bool NearDispatcher::standsStill(const btManifoldArray& manifolds) const {
+  return manifolds.size() == 1 && stands_still && stands_still(*manifolds[0]);
 }
 
 }  // namespace contact

@@ -28,9 +28,9 @@ struct NearDispatcher : btCollisionDispatcher {
   /// duration of a detection.
   ThreadPool* pool = nullptr;
   std::size_t pairs_per_block = 64;
-  /// Asked, on the caller, of a convex pair that has its manifold: whether the points it gave last time still
-  /// stand (pair_reuse.hpp); its narrow phase is then skipped and its manifold left empty. Empty: every pair
-  /// is queried.
+  /// Asked of a convex pair that has its manifold, where its narrow phase would run (on the pool, each pair
+  /// its own entry): whether the points it gave last time still stand (pair_reuse.hpp); its narrow phase is
+  /// then skipped and its manifold left empty. Empty: every pair is queried.
   std::function<bool(const btPersistentManifold&)> stands_still;
 
   /// Every overlapping pair of the broad phase, in its order: those that need one get their algorithm (and a
@@ -47,6 +47,8 @@ struct NearDispatcher : btCollisionDispatcher {
 
  private:
   bool needsNarrowPhase(const btBroadphasePair& pair);
+  /// stands_still's answer for a convex pair whose manifolds are `manifolds` (false unless it has one).
+  bool standsStill(const btManifoldArray& manifolds) const;
   /// One pair's narrow phase (btCollisionDispatcher::defaultNearCallback, with the result's distance
   /// threshold set); `manifolds` is scratch.
   void processPair(btBroadphasePair& pair, const btDispatcherInfo& info, btManifoldArray& manifolds);
