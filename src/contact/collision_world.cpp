@@ -163,8 +163,15 @@ void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distan
   points.clear();
   NearDispatcher& dispatcher = impl_->dispatcher;
   // Each step's manifold is made afresh: Bullet's persistence drops the points of a sliding face when they
-  // drift from where they were found; warm starting is the contact step's own (by matching points).
-  for (int m = 0; m < dispatcher.getNumManifolds(); ++m) dispatcher.getManifoldByIndexInternal(m)->clearManifold();
+  // drift from where they were found; warm starting is the contact step's own (by matching points). Each
+  // manifold its own: over the pool.
+  const auto known = static_cast<std::size_t>(dispatcher.getNumManifolds());
+  forEachRange(pool, known, scaledBlock(std::max<std::size_t>(1, block), kManifoldBlocks),
+               [&](std::size_t, std::size_t first, std::size_t end) {
+                 for (std::size_t m = first; m < end; ++m) {
+                   dispatcher.getManifoldByIndexInternal(static_cast<int>(m))->clearManifold();
+                 }
+               });
   dispatcher.near_distance = std::max(0.0, max_distance);
   dispatcher.bounding_spheres.resize(impl_->body_count);
   for (std::size_t body = 0; body < impl_->body_count; ++body) {
@@ -219,10 +226,16 @@ void CollisionWorld::detect(std::vector<ContactPoint>& points, double max_distan
       for (std::size_t body = first; body < end; ++body) addPlanePoints(body, request, out.points);
     }
   });
-  for (std::size_t block = 0; block < blocks; ++block) {
-    const std::vector<ContactPoint>& made = impl_->detect_blocks[block].points;
-    points.insert(points.end(), made.begin(), made.end());
+  // Joined in block order, each block copied to its place over the pool.
+  impl_->block_offsets.assign(blocks + 1, 0);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    impl_->block_offsets[b + 1] = impl_->block_offsets[b] + impl_->detect_blocks[b].points.size();
   }
+  points.resize(impl_->block_offsets[blocks]);
+  pool->parallelFor(blocks, [&](std::size_t b) {
+    const std::vector<ContactPoint>& made = impl_->detect_blocks[b].points;
+    std::copy(made.begin(), made.end(), points.begin() + static_cast<std::ptrdiff_t>(impl_->block_offsets[b]));
+  });
 }
 
 bool CollisionWorld::movesInStep(const DetectRequest& request, const std::vector<ContactPoint>& points,

@@ -158,6 +158,7 @@ struct CollisionWorld::Impl {
     std::vector<ContactPoint> points;
   };
   std::vector<DetectBlock> detect_blocks;
+  std::vector<std::size_t> block_offsets;  // where each block's points go in the joined list (then the total)
 
   Impl() {
     // A face resting on a face needs several points in one pass. Convex pairs get them by face clipping

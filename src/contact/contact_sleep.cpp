@@ -142,7 +142,7 @@ void ContactStep::updateSleep(SceneBodies& bodies, double h) {
 
 void ContactStep::setAsideSleepingPairs() {
   restoreWokenPairs();  // a pair stays in one place or the other
-  moveWhere(touching_, asleep_touching_, [&](std::uint64_t key) { return sleepingPair(key); });  // still sorted
+  moveWhere(touching_, asleep_touching_, [&](std::uint64_t key) { return sleepingPair(key); });
   indexTouching();
   moveWhere(warm_, asleep_warm_, [&](const WarmPoint& w) { return sleepingPair(w.key); });
   indexWarmPoints();

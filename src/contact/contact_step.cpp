@@ -85,7 +85,11 @@ bool ContactStep::wasTouching(std::uint64_t key) const {
 }
 
 void ContactStep::indexTouching() {
-  touching_index_.build(touching_.size(), [&](std::size_t i) { return touching_[i]; });
+  const auto keyOf = [&](std::size_t i) { return touching_[i]; };
+  if (touching_index_.build(touching_.size(), keyOf)) return;
+  std::sort(touching_.begin(), touching_.end());  // some pair came twice: each once
+  touching_.erase(std::unique(touching_.begin(), touching_.end()), touching_.end());
+  touching_index_.build(touching_.size(), keyOf);
 }
 
 bool ContactStep::wasTouching(std::uint64_t key, PairLookup& lookup) const {
@@ -134,10 +138,12 @@ void ContactStep::detectPoints(const SceneBodies* bodies, double h) {
   if (bodies == nullptr) {
     world_->detect(points_, settings_.penetration_slop);
   } else {
-    moving_.assign(colliders_.size(), 0);
-    for (std::size_t k = 0; k < colliders_.size(); ++k) {
-      moving_[k] = !sleep_.asleep(k) && reachBound(*bodies, k, h) > settings_.penetration_slop ? 1 : 0;
-    }
+    moving_.resize(colliders_.size());
+    forEachRange(pool_, colliders_.size(), bodies_per_block_, [&](std::size_t, std::size_t first, std::size_t end) {
+      for (std::size_t k = first; k < end; ++k) {
+        moving_[k] = !sleep_.asleep(k) && reachBound(*bodies, k, h) > settings_.penetration_slop ? 1 : 0;
+      }
+    });
     world_->detect(points_, settings_.penetration_slop, speculativeDistance(h), &moving_, pool_, bodies_per_block_);
   }
   if (statistics_.out_of_range == 0) return;
@@ -326,7 +332,8 @@ std::size_t ContactStep::solverIndex(const SceneBodies& bodies, std::size_t obje
 
 void ContactStep::buildSolverLists() {
   // The contacts and anchors are sized below and made whole by makeContact (not cleared first: a step's
-  // thousands of contacts would be constructed twice).
+  // thousands of contacts would be constructed twice), their solver bodies too (solver_pairs_): each
+  // contact is written once, by the thread that fills its island.
   startSolverLists();
   admitted_.clear();
   admitted_links_.clear();
@@ -359,6 +366,7 @@ void ContactStep::buildSolverLists() {
   solver_anchors_.resize(count);
   solver_touching_.resize(count);
   solver_local_.resize(count);
+  solver_pairs_.resize(count);
   island_body_start_.clear();
   for (std::size_t island = 0; island < islands_.islands(); ++island) {
     island_body_start_.push_back(solver_bodies_.size());
@@ -367,8 +375,7 @@ void ContactStep::buildSolverLists() {
       const ContactPoint& point = points_[admitted_[admitted]];
       solver_points_[j] = &point;
       solver_touching_[j] = admitted_touching_[admitted];
-      solver_contacts_[j].a = solverSlot(point.a);
-      solver_contacts_[j].b = solverSlot(point.b);
+      solver_pairs_[j] = {solverSlot(point.a), solverSlot(point.b)};
     }
   }
   island_body_start_.push_back(solver_bodies_.size());
@@ -383,6 +390,7 @@ void ContactStep::fillBodies(const SceneBodies& bodies, std::size_t first_island
 void ContactStep::fillContacts(const SceneBodies& bodies, std::size_t first, std::size_t end) {
   PairLookup lookup;
   for (std::size_t j = first; j < end; ++j) {
+    solver_contacts_[j].a = solver_pairs_[j].first, solver_contacts_[j].b = solver_pairs_[j].second;
     makeContact(*solver_points_[j], bodies, solver_touching_[j] != 0, lookup, solver_contacts_[j], solver_anchors_[j],
                 &solver_local_[j]);
   }
@@ -460,14 +468,12 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
 void ContactStep::rememberTouching() {
   // A sleeping island's pairs are set aside (asleep_touching_), kept for when it wakes.
   touching_.clear();
-  // A pair's points follow each other: one key per run before the sort.
+  // A pair's points follow each other: one key per run (indexTouching sorts them should a pair come twice).
   std::uint64_t last = ~std::uint64_t{0};
   for (const ContactPoint* point : solver_points_) {
     const std::uint64_t key = pairKey(point->a, point->b);
     if (key != last) touching_.push_back(key), last = key;
   }
-  std::sort(touching_.begin(), touching_.end());
-  touching_.erase(std::unique(touching_.begin(), touching_.end()), touching_.end());
   indexTouching();
 }
 

@@ -157,6 +157,7 @@ class ContactStep {
   // thick near something, and conservative advancement along the integrated path.
   static constexpr int kMaxStepSplits = 8;  // at most 2⁸ = 256 parts of a step
   bool needsShorterStep(const SceneBodies& bodies, const std::vector<char>& running, double h);
+  std::vector<double> block_farthest_;  // scratch of needsShorterStep: per block of bodies, the farthest reach
   double reachBound(const SceneBodies& bodies, std::size_t k, double h) const;
   bool movesFast(std::size_t k, const State& after) const;
   void sweptBox(const SceneBodies& bodies, std::size_t k, double h, Eigen::Vector3d& low, Eigen::Vector3d& high) const;
@@ -258,8 +259,9 @@ class ContactStep {
   std::vector<State> start_;
   std::vector<ContactPoint> points_, pair_points_;
   std::vector<char> moving_;  // scratch of detectPoints: per collider, whether it moves more than the slop
-  // touching_: the pairs touching at the end of the last step, sorted; touching_index_ finds them (built by
-  // indexTouching wherever touching_ changes, before anything looks a pair up, on any thread).
+  // touching_: the pairs touching at the end of the last step, in no particular order; touching_index_
+  // finds them (built by indexTouching wherever touching_ changes, before anything looks a pair up, on any
+  // thread).
   std::vector<std::uint64_t> touching_, engaged_;
   PairRuns touching_index_;
   void indexTouching();
@@ -286,8 +288,10 @@ class ContactStep {
   std::vector<std::pair<std::uint64_t, std::size_t>> warm_order_;  // scratch of indexWarmPoints
   // Per solver contact: the anchors it carries on a and on b (in those objects' frames); zeros if not anchored.
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> solver_anchors_;
-  // Per solver contact of the resting solve: its point's place on its body (WarmPoint::local).
+  // Per solver contact of the resting solve: its point's place on its body (WarmPoint::local), and its two
+  // solver bodies (numbered by buildSolverLists, given to the contact when it is filled).
   std::vector<Eigen::Vector3d> solver_local_;
+  std::vector<std::pair<std::size_t, std::size_t>> solver_pairs_;
 };
 
 }  // namespace contact

@@ -16,6 +16,8 @@
 
 #include "contact_step.hpp"
 
+#include "rigid_body_sim/thread_pool.hpp"
+
 namespace rigid_body {
 namespace contact {
 
@@ -56,16 +58,22 @@ double ContactStep::reachBound(const SceneBodies& bodies, std::size_t k, double 
 }
 
 bool ContactStep::needsShorterStep(const SceneBodies& bodies, const std::vector<char>& running, double h) {
-  double farthest = 0.0;
   const std::size_t n = colliders_.size();
-  for (std::size_t k = 0; k < n; ++k) {
-    fast_[k] = 0;
-    const State& state = bodies.states[colliders_[k]];
-    if (!running[k] || outside_[k] || !isFinite(state)) continue;
-    const double reach = reachBound(bodies, k, h);
-    farthest = std::max(farthest, reach);
-    fast_[k] = reach > kSweepFraction * inner_radius_[k];
-  }
+  // Each body's reach over the pool, each block's farthest kept apart (their largest is the same whatever
+  // the blocks).
+  block_farthest_.assign(blockCount(n, bodies_per_block_), 0.0);
+  forEachRange(pool_, n, bodies_per_block_, [&](std::size_t block, std::size_t first, std::size_t end) {
+    for (std::size_t k = first; k < end; ++k) {
+      fast_[k] = 0;
+      const State& state = bodies.states[colliders_[k]];
+      if (!running[k] || outside_[k] || !isFinite(state)) continue;
+      const double reach = reachBound(bodies, k, h);
+      block_farthest_[block] = std::max(block_farthest_[block], reach);
+      fast_[k] = reach > kSweepFraction * inner_radius_[k];
+    }
+  });
+  double farthest = 0.0;
+  for (const double block : block_farthest_) farthest = std::max(farthest, block);
   for (std::size_t k = 0; k < n; ++k) {
     if (!fast_[k]) continue;
     const Eigen::Vector3d& p = bodies.states[colliders_[k]].p_WB;
