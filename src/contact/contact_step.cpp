@@ -139,7 +139,7 @@ void ContactStep::detectPoints(const SceneBodies* bodies, double h) {
     world_->detect(points_, settings_.penetration_slop);
   } else {
     moving_.resize(colliders_.size());
-    forEachRange(pool_, colliders_.size(), bodies_per_block_, [&](std::size_t, std::size_t first, std::size_t end) {
+    forEachRange(pool_, colliders_.size(), scaledBlock(bodies_per_block_, kBoundBlocks), [&](std::size_t, std::size_t first, std::size_t end) {
       for (std::size_t k = first; k < end; ++k) {
         moving_[k] = !sleep_.asleep(k) && reachBound(*bodies, k, h) > settings_.penetration_slop ? 1 : 0;
       }

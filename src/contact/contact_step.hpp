@@ -158,6 +158,9 @@ class ContactStep {
   static constexpr int kMaxStepSplits = 8;  // at most 2⁸ = 256 parts of a step
   bool needsShorterStep(const SceneBodies& bodies, const std::vector<char>& running, double h);
   std::vector<double> block_farthest_;  // scratch of needsShorterStep: per block of bodies, the farthest reach
+  // A body's reach bound is a few dozen operations: so many of the scene's blocks of bodies make one block of
+  // them on the pool, enough work to be worth a hand-out (a small scene's stay on the caller).
+  static constexpr std::size_t kBoundBlocks = 8;
   double reachBound(const SceneBodies& bodies, std::size_t k, double h) const;
   bool movesFast(std::size_t k, const State& after) const;
   void sweptBox(const SceneBodies& bodies, std::size_t k, double h, Eigen::Vector3d& low, Eigen::Vector3d& high) const;

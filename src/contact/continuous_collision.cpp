@@ -61,8 +61,9 @@ bool ContactStep::needsShorterStep(const SceneBodies& bodies, const std::vector<
   const std::size_t n = colliders_.size();
   // Each body's reach over the pool, each block's farthest kept apart (their largest is the same whatever
   // the blocks).
-  block_farthest_.assign(blockCount(n, bodies_per_block_), 0.0);
-  forEachRange(pool_, n, bodies_per_block_, [&](std::size_t block, std::size_t first, std::size_t end) {
+  const std::size_t per_block = scaledBlock(bodies_per_block_, kBoundBlocks);
+  block_farthest_.assign(blockCount(n, per_block), 0.0);
+  forEachRange(pool_, n, per_block, [&](std::size_t block, std::size_t first, std::size_t end) {
     for (std::size_t k = first; k < end; ++k) {
       fast_[k] = 0;
       const State& state = bodies.states[colliders_[k]];
