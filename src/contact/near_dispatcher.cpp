@@ -55,6 +55,10 @@ void NearDispatcher::dispatchAllCollisionPairs(btOverlappingPairCache* pairs, co
   block_manifolds_.resize(1);
   pooled_pairs_.clear();
   btBroadphasePairArray& all = pairs->getOverlappingPairArray();
+  // With fewer pairs than kCheckBlocks blocks' worth, the reuse checks are made here and only the queries
+  // go to the pool (a small scene's settled pairs then wake no thread).
+  const std::size_t per_block = std::max<std::size_t>(1, pairs_per_block);
+  const bool checks_pooled = pool != nullptr && static_cast<std::size_t>(all.size()) >= scaledBlock(per_block, kCheckBlocks);
   for (int p = 0; p < all.size(); ++p) {
     btBroadphasePair& pair = all[p];
     if (!needsNarrowPhase(pair)) continue;
@@ -72,14 +76,19 @@ void NearDispatcher::dispatchAllCollisionPairs(btOverlappingPairCache* pairs, co
     manifolds.resizeNoInitialize(0);
     pair.m_algorithm->getAllContactManifolds(manifolds);
     const bool convex = a->getCollisionShape()->isConvex() && b->getCollisionShape()->isConvex();
-    if (pool != nullptr && convex && manifolds.size() > 0) {
-      pooled_pairs_.push_back(&pair);  // its reuse asked on the pool too
-    } else if (!(convex && standsStill(manifolds))) {
+    const bool pooled = pool != nullptr && convex && manifolds.size() > 0;
+    if (pooled && checks_pooled) {
+      pooled_pairs_.push_back(&pair);  // its reuse asked there
+      continue;
+    }
+    if (convex && standsStill(manifolds)) continue;
+    if (pooled) {
+      pooled_pairs_.push_back(&pair);
+    } else {
       processPair(pair, info, manifolds);
     }
   }
   const std::size_t count = pooled_pairs_.size();
-  const std::size_t per_block = std::max<std::size_t>(1, pairs_per_block);
   block_manifolds_.resize(std::max<std::size_t>(1, blockCount(count, per_block)));
   forEachRange(pool, count, per_block, [&](std::size_t block, std::size_t first, std::size_t end) {
     btManifoldArray& manifolds = block_manifolds_[block];
@@ -87,7 +96,7 @@ void NearDispatcher::dispatchAllCollisionPairs(btOverlappingPairCache* pairs, co
       btBroadphasePair& pair = *pooled_pairs_[i];
       manifolds.resizeNoInitialize(0);
       pair.m_algorithm->getAllContactManifolds(manifolds);
-      if (!standsStill(manifolds)) processPair(pair, info, manifolds);
+      if (!(checks_pooled && standsStill(manifolds))) processPair(pair, info, manifolds);
     }
   });
 }

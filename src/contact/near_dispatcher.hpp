@@ -28,9 +28,10 @@ struct NearDispatcher : btCollisionDispatcher {
   /// duration of a detection.
   ThreadPool* pool = nullptr;
   std::size_t pairs_per_block = 64;
-  /// Asked of a convex pair that has its manifold, where its narrow phase would run (on the pool, each pair
-  /// its own entry): whether the points it gave last time still stand (pair_reuse.hpp); its narrow phase is
-  /// then skipped and its manifold left empty. Empty: every pair is queried.
+  /// Asked of a convex pair that has its manifold: whether the points it gave last time still stand
+  /// (pair_reuse.hpp); its narrow phase is then skipped and its manifold left empty. Asked on the pool,
+  /// where the pair's query would run (each pair its own entry), once the broad phase has kCheckBlocks
+  /// blocks' worth of pairs; on the caller below that. Empty: every pair is queried.
   std::function<bool(const btPersistentManifold&)> stands_still;
 
   /// Every overlapping pair of the broad phase, in its order: those that need one get their algorithm (and a
@@ -53,6 +54,8 @@ struct NearDispatcher : btCollisionDispatcher {
   /// threshold set); `manifolds` is scratch.
   void processPair(btBroadphasePair& pair, const btDispatcherInfo& info, btManifoldArray& manifolds);
 
+  // A reuse check is a few dozen operations: so many blocks of pairs make them worth a hand-out.
+  static constexpr std::size_t kCheckBlocks = 8;
   std::vector<btBroadphasePair*> pooled_pairs_;          // this detection's pairs for the pool
   std::vector<btManifoldArray> block_manifolds_;          // scratch of processPair, one per block of pairs
 };
