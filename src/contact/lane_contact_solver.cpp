@@ -1,6 +1,7 @@
 #include "lane_contact_solver.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <type_traits>
 
 #define RIGID_BODY_CONTACT_LANES_ISA build_isa  // lane_kernel.hpp: the build's own instruction set
@@ -14,14 +15,10 @@ using namespace build_isa;
 
 namespace {
 
+// The fields of a point slot that are not its directions or Jacobian products (loadFullSlot's lane-by-lane
+// part; loadPoint's last lines).
 template <class T>
-void loadPoint(PointLanes<T>& s, std::size_t l, const SolverContact& c) {
-  setLane(s.n, l, c.n), setLane(s.t1, l, c.t1), setLane(s.t2, l, c.t2);
-  for (int j = 0; j < 3; ++j) {
-    setLane(s.cross_a[j], l, Eigen::Vector3d(c.cross_a.col(j))), setLane(s.cross_b[j], l, Eigen::Vector3d(c.cross_b.col(j)));
-    setLane(s.response_a[j], l, Eigen::Vector3d(c.response_a.col(j)));
-    setLane(s.response_b[j], l, Eigen::Vector3d(c.response_b.col(j)));
-  }
+void loadScalars(PointLanes<T>& s, std::size_t l, const SolverContact& c) {
   setLane(s.normal_mass, l, c.normal_mass);
   setLane(s.tangent_mass00, l, c.tangent_mass(0, 0)), setLane(s.tangent_mass01, l, c.tangent_mass(0, 1));
   setLane(s.tangent_mass11, l, c.tangent_mass(1, 1));
@@ -62,6 +59,55 @@ void runSweepsWidest(bool wide, std::vector<ManifoldLanes<T>>& groups, LaneBodyV
 }
 
 }  // namespace
+
+template <class T>
+void loadPoint(PointLanes<T>& s, std::size_t l, const SolverContact& c) {
+  setLane(s.n, l, c.n), setLane(s.t1, l, c.t1), setLane(s.t2, l, c.t2);
+  for (int j = 0; j < 3; ++j) {
+    setLane(s.cross_a[j], l, Eigen::Vector3d(c.cross_a.col(j))), setLane(s.cross_b[j], l, Eigen::Vector3d(c.cross_b.col(j)));
+    setLane(s.response_a[j], l, Eigen::Vector3d(c.response_a.col(j)));
+    setLane(s.response_b[j], l, Eigen::Vector3d(c.response_b.col(j)));
+  }
+  loadScalars(s, l, c);
+}
+template void loadPoint(PointLanes<double>&, std::size_t, const SolverContact&);
+template void loadPoint(PointLanes<Lanes>&, std::size_t, const SolverContact&);
+template void loadPoint(PointLanes<EightLanes>&, std::size_t, const SolverContact&);
+
+bool slotLoadsTransposed() {
+#ifdef RIGID_BODY_WIDE_CONTACT_LANES
+  static const bool transposed = [] {
+    const SolverContact c;
+    const bool directions = c.t1.data() == c.n.data() + 3 && c.t2.data() == c.n.data() + 6;
+    const bool products = c.cross_b.data() == c.cross_a.data() + 9 && c.response_a.data() == c.cross_a.data() + 18 &&
+                          c.response_b.data() == c.cross_a.data() + 27;
+    using Slot = PointLanes<EightLanes>;
+    constexpr std::size_t kVec = sizeof(Vec<EightLanes>);
+    const bool slot = kVec == 3 * sizeof(EightLanes) && offsetof(Slot, t1) == offsetof(Slot, n) + kVec &&
+                      offsetof(Slot, t2) == offsetof(Slot, n) + 2 * kVec &&
+                      offsetof(Slot, cross_b) == offsetof(Slot, cross_a) + 3 * kVec &&
+                      offsetof(Slot, response_a) == offsetof(Slot, cross_a) + 6 * kVec &&
+                      offsetof(Slot, response_b) == offsetof(Slot, cross_a) + 9 * kVec;
+    return cpuHasAvx512() && directions && products && slot;
+  }();
+  return transposed;
+#else
+  return false;
+#endif
+}
+
+void loadFullSlot(PointLanes<EightLanes>& s, const SolverContact* const* contacts) {
+#ifdef RIGID_BODY_WIDE_CONTACT_LANES
+  const double* directions[8];
+  const double* products[8];
+  for (std::size_t l = 0; l < 8; ++l) directions[l] = contacts[l]->n.data(), products[l] = contacts[l]->cross_a.data();
+  transposeIntoLanes(&s.n.x, directions, 9);             // n, t1, t2
+  transposeIntoLanes(&s.cross_a[0].x, products, 36);     // cross_a, cross_b, response_a, response_b
+  for (std::size_t l = 0; l < 8; ++l) loadScalars(s, l, *contacts[l]);
+#else
+  for (std::size_t l = 0; l < 8; ++l) loadPoint(s, l, *contacts[l]);
+#endif
+}
 
 std::size_t bestLaneCount(bool wide_instructions) {
 #ifdef RIGID_BODY_WIDE_CONTACT_LANES
@@ -110,7 +156,8 @@ void clearUnfilled(ManifoldLanes<T>& g, std::size_t fewest) {
 // not spent on lanes with no point in them (a sphere's one point beside a face's four). `order` is scratch.
 template <class T>
 void packGroups(const ManifoldColouring& colouring, const std::vector<SolverContact>& contacts,
-                std::size_t body_base, std::vector<std::size_t>& order, std::vector<ManifoldLanes<T>>& groups) {
+                std::size_t body_base, std::vector<std::size_t>& order, std::vector<ManifoldLanes<T>>& groups,
+                bool transposed) {
   constexpr std::size_t kWidth = kLaneCount<T>;
   const auto local = [&](std::size_t s) { return static_cast<std::uint32_t>(s == kEnvironment ? 0 : s - body_base + 1); };
   const std::vector<Manifold>& manifolds = colouring.manifolds();
@@ -139,7 +186,20 @@ void packGroups(const ManifoldColouring& colouring, const std::vector<SolverCont
         g.island[l] = manifold.island;
         g.first_contact[l] = manifold.first;
         g.count[l] = static_cast<std::uint32_t>(manifold.count);
-        for (std::size_t p = 0; p < manifold.count; ++p) loadPoint(g.point[p], l, contacts[manifold.first + p]);
+      }
+      // The slots every lane fills, eight lanes wide, by transposes where they may be; the rest lane by lane.
+      std::size_t p = 0;
+      if constexpr (std::is_same_v<T, EightLanes>) {
+        for (; transposed && p < fewest; ++p) {
+          const SolverContact* lanes[kWidth];
+          for (std::size_t l = 0; l < kWidth; ++l) lanes[l] = &contacts[g.first_contact[l] + p];
+          loadFullSlot(g.point[p], lanes);
+        }
+      }
+      for (; p < g.slots; ++p) {
+        for (std::size_t l = 0; l < g.lanes; ++l) {
+          if (p < g.count[l]) loadPoint(g.point[p], l, contacts[g.first_contact[l] + p]);
+        }
       }
     }
   }
@@ -211,7 +271,7 @@ void LaneContactSolver::solve(std::vector<SolverContact>& contacts, std::vector<
   buffers.bodies.assign(body_end - body_base + 1, LaneBodyVelocity{{0, 0, 0}, {0, 0, 0}, 0.0});
   gatherBodies(bodies, islands, count, body_base, buffers.bodies);
   const auto sweep = [&](auto& groups) {
-    packGroups(colouring_, contacts, body_base, buffers.order, groups);
+    packGroups(colouring_, contacts, body_base, buffers.order, groups, lanes.wide_instructions && slotLoadsTransposed());
     runSweepsWidest(lanes.wide_instructions, groups, buffers.bodies.data(), contacts.data(), sweeps, converged,
                     options.iterations);
     unpackGroups(groups, contacts);

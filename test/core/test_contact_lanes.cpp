@@ -5,10 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <memory>
 #include <random>
 #include <set>
 #include <vector>
 
+#include "../../src/contact/contact_lanes.hpp"
 #include "../../src/contact/solver_islands.hpp"
 #include "rigid_body_sim/mass_properties.hpp"
 
@@ -261,6 +263,38 @@ TEST(ContactLanes, TheReadableSolverInTheSweepOrderGetsTheSameImpulsesToRounding
     differs = std::max(differs, std::abs(lanes.contacts[order[j]].normal_impulse - listed[order[j]].normal_impulse));
   }
   EXPECT_GT(differs, 1e-6 * largest);
+}
+
+// A full slot loaded by transposes (where the CPU has AVX-512) holds the bits of the lane-by-lane loads: the
+// contacts' fields all different, every one of the slot's fields compared.
+TEST(ContactLanes, ASlotLoadedByTransposesHoldsTheLaneByLaneLoads) {
+  if (!slotLoadsTransposed()) GTEST_SKIP() << "this CPU or build loads the slots lane by lane only";
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  std::vector<SolverContact> contacts(8);
+  for (SolverContact& c : contacts) {
+    for (Eigen::Vector3d* v : {&c.r_a, &c.r_b, &c.n, &c.t1, &c.t2}) *v = Eigen::Vector3d(value(random), value(random), value(random));
+    for (Eigen::Matrix3d* m : {&c.cross_a, &c.cross_b, &c.response_a, &c.response_b}) {
+      for (int i = 0; i < 9; ++i) m->data()[i] = value(random);
+    }
+    for (double* x : {&c.separation, &c.friction, &c.restitution, &c.target_speed, &c.slip_squared, &c.normal_floor,
+                      &c.normal_impulse, &c.normal_mass}) {
+      *x = value(random);
+    }
+    c.friction_impulse = Eigen::Vector2d(value(random), value(random));
+    for (int i = 0; i < 4; ++i) c.tangent_mass.data()[i] = value(random), c.tangent_response.data()[i] = value(random);
+  }
+  const SolverContact* lanes[8];
+  for (std::size_t l = 0; l < 8; ++l) lanes[l] = &contacts[l];
+  auto transposed = std::make_unique<PointLanes<EightLanes>>();
+  auto lane_by_lane = std::make_unique<PointLanes<EightLanes>>();
+  loadFullSlot(*transposed, lanes);
+  for (std::size_t l = 0; l < 8; ++l) loadPoint(*lane_by_lane, l, contacts[l]);
+  const auto* a = reinterpret_cast<const double*>(transposed.get());
+  const auto* b = reinterpret_cast<const double*>(lane_by_lane.get());
+  for (std::size_t i = 0; i < sizeof(PointLanes<EightLanes>) / sizeof(double); ++i) {
+    EXPECT_EQ(std::memcmp(a + i, b + i, sizeof(double)), 0) << "field " << i / 8 << ", lane " << i % 8;
+  }
 }
 
 }  // namespace
