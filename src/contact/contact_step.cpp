@@ -139,7 +139,8 @@ void ContactStep::detectPoints(const SceneBodies* bodies, double h) {
     world_->detect(points_, settings_.penetration_slop);
   } else {
     moving_.resize(colliders_.size());
-    forEachRange(pool_, colliders_.size(), scaledBlock(bodies_per_block_, kBoundBlocks), [&](std::size_t, std::size_t first, std::size_t end) {
+    const std::size_t per_block = scaledBlock(bodies_per_block_, kBoundBlocks);
+    forEachRange(pool_, colliders_.size(), per_block, [&](std::size_t, std::size_t first, std::size_t end) {
       for (std::size_t k = first; k < end; ++k) {
         moving_[k] = !sleep_.asleep(k) && reachBound(*bodies, k, h) > settings_.penetration_slop ? 1 : 0;
       }

@@ -271,7 +271,8 @@ void LaneContactSolver::solve(std::vector<SolverContact>& contacts, std::vector<
   buffers.bodies.assign(body_end - body_base + 1, LaneBodyVelocity{{0, 0, 0}, {0, 0, 0}, 0.0});
   gatherBodies(bodies, islands, count, body_base, buffers.bodies);
   const auto sweep = [&](auto& groups) {
-    packGroups(colouring_, contacts, body_base, buffers.order, groups, lanes.wide_instructions && slotLoadsTransposed());
+    const bool transposed = lanes.wide_instructions && slotLoadsTransposed();
+    packGroups(colouring_, contacts, body_base, buffers.order, groups, transposed);
     runSweepsWidest(lanes.wide_instructions, groups, buffers.bodies.data(), contacts.data(), sweeps, converged,
                     options.iterations);
     unpackGroups(groups, contacts);

@@ -58,7 +58,8 @@ void NearDispatcher::dispatchAllCollisionPairs(btOverlappingPairCache* pairs, co
   // With fewer pairs than kCheckBlocks blocks' worth, the reuse checks are made here and only the queries
   // go to the pool (a small scene's settled pairs then wake no thread).
   const std::size_t per_block = std::max<std::size_t>(1, pairs_per_block);
-  const bool checks_pooled = pool != nullptr && static_cast<std::size_t>(all.size()) >= scaledBlock(per_block, kCheckBlocks);
+  const auto pair_count = static_cast<std::size_t>(all.size());
+  const bool checks_pooled = pool != nullptr && pair_count >= scaledBlock(per_block, kCheckBlocks);
   for (int p = 0; p < all.size(); ++p) {
     btBroadphasePair& pair = all[p];
     if (!needsNarrowPhase(pair)) continue;

@@ -273,7 +273,9 @@ TEST(ContactLanes, ASlotLoadedByTransposesHoldsTheLaneByLaneLoads) {
   std::uniform_real_distribution<double> value(-1.0, 1.0);
   std::vector<SolverContact> contacts(8);
   for (SolverContact& c : contacts) {
-    for (Eigen::Vector3d* v : {&c.r_a, &c.r_b, &c.n, &c.t1, &c.t2}) *v = Eigen::Vector3d(value(random), value(random), value(random));
+    for (Eigen::Vector3d* v : {&c.r_a, &c.r_b, &c.n, &c.t1, &c.t2}) {
+      *v = Eigen::Vector3d(value(random), value(random), value(random));
+    }
     for (Eigen::Matrix3d* m : {&c.cross_a, &c.cross_b, &c.response_a, &c.response_b}) {
       for (int i = 0; i < 9; ++i) m->data()[i] = value(random);
     }
