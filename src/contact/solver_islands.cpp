@@ -95,8 +95,11 @@ std::size_t SolverIslands::root(std::size_t body) {
 void SolverIslands::group(const std::vector<std::pair<std::size_t, std::size_t>>& links, std::size_t bodies) {
   parent_.resize(bodies);
   for (std::size_t k = 0; k < bodies; ++k) parent_[k] = k;
-  for (const auto& [first, second] : links) {
-    if (first >= bodies || second >= bodies) continue;
+  // A pair's points follow each other: each run of one link is joined (and looked up) once.
+  const auto repeats = [&](std::size_t i) { return i > 0 && links[i] == links[i - 1]; };
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    const auto& [first, second] = links[i];
+    if (repeats(i) || first >= bodies || second >= bodies) continue;
     const std::size_t a = root(first), b = root(second);
     if (a != b) parent_[std::max(a, b)] = std::min(a, b);
   }
@@ -104,7 +107,9 @@ void SolverIslands::group(const std::vector<std::pair<std::size_t, std::size_t>>
   // counted into place, each island's in their given order.
   const auto bodyOf = [&](std::size_t i) { return links[i].first < bodies ? links[i].first : links[i].second; };
   island_of_root_.assign(bodies, kNoIsland);
-  for (std::size_t i = 0; i < links.size(); ++i) island_of_root_[root(bodyOf(i))] = 0;
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    if (!repeats(i)) island_of_root_[root(bodyOf(i))] = 0;
+  }
   std::size_t count = 0;
   island_root_.clear();
   for (std::size_t k = 0; k < bodies; ++k) {
@@ -114,7 +119,7 @@ void SolverIslands::group(const std::vector<std::pair<std::size_t, std::size_t>>
   island_of_point_.resize(links.size());
   island_start_.assign(count + 1, 0);
   for (std::size_t i = 0; i < links.size(); ++i) {
-    island_of_point_[i] = island_of_root_[root(bodyOf(i))];
+    island_of_point_[i] = repeats(i) ? island_of_point_[i - 1] : island_of_root_[root(bodyOf(i))];
     ++island_start_[island_of_point_[i] + 1];
   }
   for (std::size_t island = 0; island < count; ++island) island_start_[island + 1] += island_start_[island];
