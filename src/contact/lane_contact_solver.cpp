@@ -161,7 +161,9 @@ void packGroups(const ManifoldColouring& colouring, const std::vector<SolverCont
   constexpr std::size_t kWidth = kLaneCount<T>;
   const auto local = [&](std::size_t s) { return static_cast<std::uint32_t>(s == kEnvironment ? 0 : s - body_base + 1); };
   const std::vector<Manifold>& manifolds = colouring.manifolds();
-  std::size_t used = 0;  // the groups filled so far: the vector keeps its groups from solve to solve
+  // The groups filled so far. The vector's groups up to its size are reused as they stand (clearUnfilled);
+  // it is cut to the groups filled at the end, so a later solve with more groups makes those afresh.
+  std::size_t used = 0;
   for (std::size_t colour = 0; colour <= ManifoldColouring::kColours; ++colour) {
     const std::size_t width = colour == ManifoldColouring::kColours ? 1 : kWidth;
     const std::size_t start = colouring.colourStart(colour), end = colouring.colourStart(colour + 1);
