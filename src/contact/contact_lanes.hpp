@@ -28,10 +28,13 @@ typedef double EightLanes __attribute__((vector_size(64)));
 template <class T>
 using LaneMask = decltype(T() < T());
 
-/// A solver body's velocities and inverse mass, as the lanes gather and scatter them.
-struct LaneBodyVelocity {
+/// A solver body's velocities and inverse mass, as the lanes gather and scatter them: eight doubles, two
+/// rows of four that the kernel transposes into four lanes (lane_kernel.hpp, gatherSide).
+struct alignas(64) LaneBodyVelocity {
   double v[3], w[3], inverse_mass;
+  double unused = 0.0;
 };
+static_assert(sizeof(LaneBodyVelocity) == 8 * sizeof(double), "two rows of four doubles");
 
 /// One point slot of a group: the prepared quantities of SolverContact, a T across the lanes. Aligned for
 /// the widest instructions: a baseline (SSE2) build aligns a vector of lanes to 16 bytes only, and the AVX

@@ -270,7 +270,7 @@ void LaneContactSolver::solve(std::vector<SolverContact>& contacts, std::vector<
     converged[i] = 0;
   }
   body_end = std::max(body_end, body_base);
-  buffers.bodies.assign(body_end - body_base + 1, LaneBodyVelocity{{0, 0, 0}, {0, 0, 0}, 0.0});
+  buffers.bodies.assign(body_end - body_base + 1, LaneBodyVelocity{{0, 0, 0}, {0, 0, 0}, 0.0, 0.0});
   gatherBodies(bodies, islands, count, body_base, buffers.bodies);
   const auto sweep = [&](auto& groups) {
     const bool transposed = lanes.wide_instructions && slotLoadsTransposed();

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <type_traits>
 
 #include "contact_lanes.hpp"
@@ -135,6 +136,91 @@ RIGID_BODY_LANE_INLINE void scatterVelocity(const Vec<T>& v, const Vec<T>& w, La
   body.w[2] = laneValue(w.z, lane);
 }
 
+// Four lanes of a body row (LaneBodyVelocity: v, w₀ in the first four doubles; w₁, w₂, 1/m and a zero in
+// the last four).
+using Row = integrators::Lanes;
+typedef long long RowShuffle __attribute__((vector_size(32)));
+
+/// Columns of four rows (a 4 × 4 transpose, its own inverse): c[f] lane k = r[k] lane f. Setting lanes one
+/// by one goes through memory (a scalar store per lane, then a vector load that cannot take them from the
+/// store buffer); shuffles keep them in registers.
+RIGID_BODY_LANE_INLINE void transposeRows(const Row (&r)[4], Row (&c)[4]) {
+  const Row t0 = __builtin_shuffle(r[0], r[1], RowShuffle{0, 4, 2, 6});
+  const Row t1 = __builtin_shuffle(r[0], r[1], RowShuffle{1, 5, 3, 7});
+  const Row t2 = __builtin_shuffle(r[2], r[3], RowShuffle{0, 4, 2, 6});
+  const Row t3 = __builtin_shuffle(r[2], r[3], RowShuffle{1, 5, 3, 7});
+  c[0] = __builtin_shuffle(t0, t2, RowShuffle{0, 1, 4, 5}), c[1] = __builtin_shuffle(t1, t3, RowShuffle{0, 1, 4, 5});
+  c[2] = __builtin_shuffle(t0, t2, RowShuffle{2, 3, 6, 7}), c[3] = __builtin_shuffle(t1, t3, RowShuffle{2, 3, 6, 7});
+}
+
+/// A vector of lanes from its four-lane parts, and part `chunk` of one.
+template <class T>
+RIGID_BODY_LANE_INLINE T joinRows(const Row (&part)[kLaneCount<T> / 4]) {
+  if constexpr (kLaneCount<T> == 4) {
+    return part[0];
+  } else {
+    static_assert(kLaneCount<T> == 8, "four or eight lanes");
+    return __builtin_shufflevector(part[0], part[1], 0, 1, 2, 3, 4, 5, 6, 7);
+  }
+}
+template <class T>
+RIGID_BODY_LANE_INLINE Row rowPart(const T& x, std::size_t chunk) {
+  if constexpr (kLaneCount<T> == 4) {
+    return (void)chunk, x;
+  } else {
+    return chunk == 0 ? __builtin_shufflevector(x, x, 0, 1, 2, 3) : __builtin_shufflevector(x, x, 4, 5, 6, 7);
+  }
+}
+
+/// One side's bodies (index[l] for lane l < lanes; the environment's zeros in the lanes beyond) into lanes:
+/// gatherVelocity lane by lane, by transposes of the bodies' rows where a lane holds several doubles.
+template <class T>
+RIGID_BODY_LANE_INLINE void gatherSide(const LaneBodyVelocity* bodies, const std::uint32_t* index, std::size_t lanes,
+                                       Vec<T>& v, Vec<T>& w, T& inverse_mass) {
+  if constexpr (std::is_same_v<T, double>) {
+    (void)lanes, gatherVelocity(v, w, inverse_mass, bodies[index[0]], 0);
+  } else {
+    constexpr std::size_t kChunks = kLaneCount<T> / 4;
+    Row column[8][kChunks];
+    for (std::size_t chunk = 0; chunk < kChunks; ++chunk) {
+      Row low[4], high[4], low_columns[4], high_columns[4];
+      for (std::size_t k = 0; k < 4; ++k) {
+        const std::size_t l = 4 * chunk + k;
+        const auto* row = reinterpret_cast<const unsigned char*>(&bodies[l < lanes ? index[l] : 0]);
+        std::memcpy(&low[k], row, sizeof(Row)), std::memcpy(&high[k], row + sizeof(Row), sizeof(Row));
+      }
+      transposeRows(low, low_columns), transposeRows(high, high_columns);
+      for (std::size_t f = 0; f < 4; ++f) column[f][chunk] = low_columns[f], column[4 + f][chunk] = high_columns[f];
+    }
+    v = {joinRows<T>(column[0]), joinRows<T>(column[1]), joinRows<T>(column[2])};
+    w = {joinRows<T>(column[3]), joinRows<T>(column[4]), joinRows<T>(column[5])};
+    inverse_mass = joinRows<T>(column[6]);
+  }
+}
+
+/// One side's velocities back into the bodies of the lanes set in `live` (scatterVelocity lane by lane; by
+/// transposes where a lane holds several doubles, the row's 1/m written back as it was gathered).
+template <class T>
+RIGID_BODY_LANE_INLINE void scatterSide(const Vec<T>& v, const Vec<T>& w, const T& inverse_mass, LaneMask<T> live,
+                                        LaneBodyVelocity* bodies, const std::uint32_t* index, std::size_t lanes) {
+  if constexpr (std::is_same_v<T, double>) {
+    if (lanes > 0 && live) scatterVelocity(v, w, bodies[index[0]], 0);
+  } else {
+    for (std::size_t chunk = 0; chunk < kLaneCount<T> / 4; ++chunk) {
+      const Row low_columns[4] = {rowPart(v.x, chunk), rowPart(v.y, chunk), rowPart(v.z, chunk), rowPart(w.x, chunk)};
+      const Row high_columns[4] = {rowPart(w.y, chunk), rowPart(w.z, chunk), rowPart(inverse_mass, chunk), Row{}};
+      Row low[4], high[4];
+      transposeRows(low_columns, low), transposeRows(high_columns, high);
+      for (std::size_t k = 0; k < 4; ++k) {
+        const std::size_t l = 4 * chunk + k;
+        if (l >= lanes || !laneOn(live, l)) continue;
+        auto* row = reinterpret_cast<unsigned char*>(&bodies[index[l]]);
+        std::memcpy(row, &low[k], sizeof(Row)), std::memcpy(row + sizeof(Row), &high[k], sizeof(Row));
+      }
+    }
+  }
+}
+
 /// K⁺ of the manifolds in the lanes set in `lanes` (bit l for lane l), found once (invertJointManifolds'
 /// rule, in solveJointNormals). Outside the lanes' instructions: Eigen's.
 template <class T>
@@ -160,7 +246,7 @@ RIGID_BODY_LANE_INLINE void jointNormals(ManifoldLanes<T>& g, LaneMask<T> live, 
                                          Vec<T>& vb, Vec<T>& wb, const T& mb, T& change) {
   LaneMask<T> ok = live & ((g.inverted <= 0.0) | (g.joint > 0.0));
   if (!anyLane(ok)) return;
-  T residual[kMaxManifoldPoints] = {};
+  T residual[kMaxManifoldPoints];  // read and written below g.slots only (zeroing them was a call to memset)
   LaneMask<T> moving = T{} < T{};  // some point's residual beyond kFaceAtRest
   for (std::size_t p = 0; p < g.slots; ++p) {
     const PointLanes<T>& s = g.point[p];
@@ -177,7 +263,7 @@ RIGID_BODY_LANE_INLINE void jointNormals(ManifoldLanes<T>& g, LaneMask<T> live, 
   }
   ok = ok & (g.joint > 0.0);
   if (!anyLane(ok)) return;
-  T next[kMaxManifoldPoints] = {};
+  T next[kMaxManifoldPoints];
   for (std::size_t p = 0; p < g.slots; ++p) {
     const PointLanes<T>& s = g.point[p];
     T d{};
@@ -203,12 +289,9 @@ RIGID_BODY_LANE_INLINE void jointNormals(ManifoldLanes<T>& g, LaneMask<T> live, 
 template <class T>
 RIGID_BODY_LANE_INLINE void sweepGroup(ManifoldLanes<T>& g, LaneBodyVelocity* bodies, LaneMask<T> live,
                                        const SolverContact* contacts, T& change, T& impulse) {
-  Vec<T> va{}, wa{}, vb{}, wb{};
-  T ma{}, mb{};
-  for (std::size_t l = 0; l < g.lanes; ++l) {
-    gatherVelocity(va, wa, ma, bodies[g.body_a[l]], l);
-    gatherVelocity(vb, wb, mb, bodies[g.body_b[l]], l);
-  }
+  Vec<T> va, wa, vb, wb;
+  T ma, mb;
+  gatherSide(bodies, g.body_a, g.lanes, va, wa, ma), gatherSide(bodies, g.body_b, g.lanes, vb, wb, mb);
   jointNormals(g, live, bodies, contacts, va, wa, ma, vb, wb, mb, change);
   for (std::size_t p = 0; p < g.slots; ++p) {
     PointLanes<T>& s = g.point[p];
@@ -242,12 +325,8 @@ RIGID_BODY_LANE_INLINE void sweepGroup(ManifoldLanes<T>& g, LaneBodyVelocity* bo
     change = laneMax(change, laneMax(laneAbs(dn), laneMax(laneAbs(df1), laneAbs(df2))));
     impulse = laneMax(impulse, laneMax(normal, laneMax(laneAbs(f1), laneAbs(f2))));
   }
-  for (std::size_t l = 0; l < g.lanes; ++l) {
-    if (!laneOn(live, l)) continue;
-    // The environment's entry (0) is the block's own copy, never read back: writing it is harmless.
-    scatterVelocity(va, wa, bodies[g.body_a[l]], l);
-    scatterVelocity(vb, wb, bodies[g.body_b[l]], l);
-  }
+  // The environment's entry (0) is the block's own copy, never read back: writing it is harmless.
+  scatterSide(va, wa, ma, live, bodies, g.body_a, g.lanes), scatterSide(vb, wb, mb, live, bodies, g.body_b, g.lanes);
 }
 
 // One sweep over every group in order, lanes of converged islands off; each island's largest change and
