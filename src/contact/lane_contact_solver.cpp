@@ -5,7 +5,11 @@
 #include <type_traits>
 
 #define RIGID_BODY_CONTACT_LANES_ISA build_isa  // lane_kernel.hpp: the build's own instruction set
+#ifdef __AVX__  // a build for this CPU (RIGID_BODY_SIM_NATIVE)
+#define RIGID_BODY_CONTACT_LANES_AVX 1
+#endif
 #include "lane_kernel.hpp"
+#undef RIGID_BODY_CONTACT_LANES_AVX
 #undef RIGID_BODY_CONTACT_LANES_ISA
 
 namespace rigid_body {

@@ -48,11 +48,20 @@ RIGID_BODY_LANE_INLINE void setMaskLane(M& m, std::size_t i, bool on) {
     m[i] = on ? -1 : 0;
   }
 }
+// Whether any lane of a mask is set. Tested lane by lane, GCC moved the friction disc's iteration mask into
+// general registers to test it, and then formed its selections from them lane by lane, with a branch each;
+// AVX tests four lanes in one instruction (their sign bits), and the mask stays a vector.
 template <class M>
 RIGID_BODY_LANE_INLINE bool anyLane(const M& m) {
   if constexpr (std::is_same_v<M, bool>) {
     return m;
   } else {
+#ifdef RIGID_BODY_CONTACT_LANES_AVX  // this copy is compiled for AVX or wider (lane_sweeps_wide.cpp)
+    if constexpr (sizeof(M) == 32) {
+      typedef double Four __attribute__((vector_size(32)));
+      return __builtin_ia32_movmskpd256(reinterpret_cast<Four>(m)) != 0;
+    }
+#endif
     bool any = false;
     for (std::size_t i = 0; i < sizeof(M) / sizeof(m[0]); ++i) any = any || m[i] != 0;
     return any;
@@ -60,6 +69,11 @@ RIGID_BODY_LANE_INLINE bool anyLane(const M& m) {
 }
 template <class T>
 RIGID_BODY_LANE_INLINE T laneSelect(const LaneMask<T>& m, const T& a, const T& b) {
+#ifdef RIGID_BODY_CONTACT_LANES_AVX
+  // By the mask's sign bits (every lane of a mask is all ones or zero). `m ? a : b` asks m != 0, a compare
+  // of 64-bit integers that AVX without AVX2 lacks: GCC took the mask apart and rebuilt it lane by lane.
+  if constexpr (sizeof(T) == 32) return __builtin_ia32_blendvpd256(b, a, reinterpret_cast<T>(m));
+#endif
   return m ? a : b;
 }
 
@@ -79,6 +93,11 @@ RIGID_BODY_LANE_INLINE T laneAbs(T a) {
 /// √v lane by lane (lane_math.hpp's laneSqrt, each lane's the scalar std::sqrt, correctly rounded).
 template <class T>
 RIGID_BODY_LANE_INLINE T laneRoot(T v) {
+#ifdef RIGID_BODY_CONTACT_LANES_AVX
+  // One AVX instruction (correctly rounded, as std::sqrt): the lane-by-lane form, once selected by a mask,
+  // was selected lane by lane with a branch each (and the mask taken apart for it).
+  if constexpr (sizeof(T) == 32) return __builtin_ia32_sqrtpd256(v);
+#endif
   integrators::laneSqrt(v);
   return v;
 }

@@ -18,6 +18,8 @@
 
 #include "lane_contact_solver.hpp"
 
+// The pragma does not define __AVX__ in C++: the kernel is told that its instructions may be AVX ones.
+#define RIGID_BODY_CONTACT_LANES_AVX 1
 #pragma GCC push_options
 #pragma GCC target("avx")
 #define RIGID_BODY_CONTACT_LANES_ISA avx
@@ -47,4 +49,5 @@ void rigid_body::contact::runSweepsAvx512(std::vector<ManifoldLanes<EightLanes>>
 }
 #pragma GCC pop_options
 
+#undef RIGID_BODY_CONTACT_LANES_AVX
 #endif  // RIGID_BODY_WIDE_CONTACT_LANES
