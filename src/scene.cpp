@@ -191,7 +191,7 @@ void Scene::stepBodiesInBatches(std::size_t begin, std::size_t end, std::int64_t
 
 void Scene::stepColliders(std::int64_t steps, SceneStepResult& result) {
   const std::vector<std::size_t>& colliders = contact_->colliders();
-  contact::SceneBodies arrays{models_, terms_, states_, inputs_, integrators_};
+  contact::SceneBodies arrays{models_, terms_, states_, inputs_, integrators_, batches_.get()};
   std::int64_t done = 0;
   for (; done < steps; ++done) {
     bool any = false;

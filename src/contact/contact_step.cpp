@@ -20,10 +20,6 @@ namespace {
 // close its gap d at d/h, no faster). A body pivoting about a corner it landed on brings its far side down at
 // its fall's speed and more; 20 m/s is a fall of 20 m. Faster arrivals are the continuous test's (step 0).
 constexpr double kSpeculativeSpeed = 20.0;
-// A colliding body's free step is one step, where a free body's block covers a whole tick of them: so many
-// of the scene's blocks of bodies make one block of free steps, enough work to be worth a hand-out.
-constexpr std::size_t kFreeStepBlocks = 8;
-
 // q turned by the rotation vector rotation_W (world axes).
 void rotate(Eigen::Quaterniond& q, const Eigen::Vector3d& rotation_W) {
   const double angle = rotation_W.norm();
@@ -240,23 +236,8 @@ void ContactStep::stepSplitting(SceneBodies& bodies, const std::vector<char>& ru
 void ContactStep::stepWhole(SceneBodies& bodies, const std::vector<char>& running, double h,
                             std::vector<StepStatus>& failed) {
   const std::size_t n = colliders_.size();
-  // 1. Free motion: every colliding body by its own integrator, as if nothing touched it (each on its own:
-  // spread over the pool).
-  const std::size_t per_block = scaledBlock(bodies_per_block_, kFreeStepBlocks);
-  forEachRange(pool_, n, per_block, [&](std::size_t, std::size_t first, std::size_t end) {
-    for (std::size_t k = first; k < end; ++k) {
-      const std::size_t body = colliders_[k];
-      start_[k] = bodies.states[body];
-      if (!running[k]) continue;
-      const StepStatus status = bodies.integrators[body].step(bodies.models[body], bodies.terms[body],
-                                                              bodies.inputs[body], h, bodies.states[body]);
-      if (status != StepStatus::kOk) {
-        failed[k] = status;
-        bodies.states[body] = start_[k];
-      }
-    }
-    placeRange(bodies.states, first, end);  // each object is its own body's: placed in the same block
-  });
+  // 1. Free motion: every colliding body by its own integrator, as if nothing touched it.
+  stepFreeMotion(bodies, running, h, failed);
   countOutside();
   detectPoints(&bodies, h);
   // 2. Impacts that begin within the step, each alone on its bodies, are resolved at their time.

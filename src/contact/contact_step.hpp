@@ -23,6 +23,9 @@
 #include "rigid_body_sim/state.hpp"
 
 namespace rigid_body {
+namespace integrators {
+class BatchStepper;
+}
 namespace contact {
 
 /// The scene's arrays the contact step reads and advances (indexed by scene body).
@@ -32,6 +35,9 @@ struct SceneBodies {
   std::vector<State>& states;
   const std::vector<AppliedWrench>& inputs;
   std::vector<Integrator>& integrators;
+  /// The scene's batches (its integrator has a lane kernel; prepared for this step), or none: the colliding
+  /// bodies' free steps then run one by one. The same bits either way.
+  const integrators::BatchStepper* batches = nullptr;
 };
 
 class ContactStep {
@@ -153,6 +159,12 @@ class ContactStep {
   void stepSplitting(SceneBodies& bodies, const std::vector<char>& running, double h, std::vector<StepStatus>& failed,
                      int splits);
   void stepWhole(SceneBodies& bodies, const std::vector<char>& running, double h, std::vector<StepStatus>& failed);
+  // Step 1 (free_motion.cpp): every running collider by its integrator as if nothing touched it, its
+  // state before in start_, a refused step in failed; every collider placed in the collision world.
+  void stepFreeMotion(SceneBodies& bodies, const std::vector<char>& running, double h, std::vector<StepStatus>& failed);
+  void stepFreeMotionInBatches(SceneBodies& bodies, const std::vector<char>& running, double h,
+                               std::vector<StepStatus>& failed);
+  std::vector<std::size_t> collider_of_;  // scratch of stepFreeMotionInBatches: scene body → collider, or none
   // The continuous test (continuous_collision.cpp): steps split while a body would move farther than it is
   // thick near something, and conservative advancement along the integrated path.
   static constexpr int kMaxStepSplits = 8;  // at most 2⁸ = 256 parts of a step
