@@ -84,22 +84,26 @@ void runSweepsAvx(std::vector<ManifoldLanes<EightLanes>>& groups, LaneBodyVeloci
 void runSweepsAvx512(std::vector<ManifoldLanes<EightLanes>>& groups, LaneBodyVelocity* bodies,
                      const SolverContact* contacts, IslandSweeps& islands, char* converged, int iterations);
 /// `count` ≥ 8 consecutive doubles from each of eight places, from[l] for lane l, into `count` consecutive
-/// vectors of eight lanes (to[f] lane l = from[l][f]), in AVX-512 operations (lane_loads_avx512.cpp): for a
-/// CPU that has them.
+/// vectors of eight lanes (to[f] lane l = from[l][f]), in AVX-512 operations (lane_loads_wide.cpp): for a
+/// CPU that has them. The same for four lanes (`count` ≥ 4) in AVX operations.
 void transposeIntoLanes(EightLanes* to, const double* const* from, std::size_t count);
+void transposeIntoLanes(Lanes* to, const double* const* from, std::size_t count);
 #endif
 
 /// Lane l of a point slot from contact c: every field of it (the other lanes' untouched).
 template <class T>
 void loadPoint(PointLanes<T>& s, std::size_t l, const SolverContact& c);
 
-/// Whether a full point slot (eight lanes, each with a point) may be loaded by transposes
-/// (loadFullSlot): the CPU has AVX-512, the build splits it (RIGID_BODY_WIDE_CONTACT_LANES), and the
-/// contact's and the slot's runs of fields lie as the transposes read and write them.
+/// Whether a full point slot (every lane with a point) of lane type T may be loaded by transposes
+/// (loadFullSlot): T has four lanes and the CPU AVX, or eight and AVX-512; the build splits them
+/// (RIGID_BODY_WIDE_CONTACT_LANES); and the contact's and the slot's runs of fields lie as the transposes
+/// read and write them.
+template <class T>
 bool slotLoadsTransposed();
 /// A full point slot, lane l from *contacts[l], as loadPoint gives it lane by lane: the directions and the
-/// Jacobian products by transposes, the rest lane by lane. Only where slotLoadsTransposed().
-void loadFullSlot(PointLanes<EightLanes>& s, const SolverContact* const* contacts);
+/// Jacobian products by transposes, the rest lane by lane. Only where slotLoadsTransposed<T>().
+template <class T>
+void loadFullSlot(PointLanes<T>& s, const SolverContact* const* contacts);
 
 }  // namespace contact
 }  // namespace rigid_body

@@ -78,6 +78,7 @@ template void loadPoint(PointLanes<double>&, std::size_t, const SolverContact&);
 template void loadPoint(PointLanes<Lanes>&, std::size_t, const SolverContact&);
 template void loadPoint(PointLanes<EightLanes>&, std::size_t, const SolverContact&);
 
+template <class T>
 bool slotLoadsTransposed() {
 #ifdef RIGID_BODY_WIDE_CONTACT_LANES
   static const bool transposed = [] {
@@ -85,33 +86,40 @@ bool slotLoadsTransposed() {
     const bool directions = c.t1.data() == c.n.data() + 3 && c.t2.data() == c.n.data() + 6;
     const bool products = c.cross_b.data() == c.cross_a.data() + 9 && c.response_a.data() == c.cross_a.data() + 18 &&
                           c.response_b.data() == c.cross_a.data() + 27;
-    using Slot = PointLanes<EightLanes>;
-    constexpr std::size_t kVec = sizeof(Vec<EightLanes>);
-    const bool slot = kVec == 3 * sizeof(EightLanes) && offsetof(Slot, t1) == offsetof(Slot, n) + kVec &&
+    using Slot = PointLanes<T>;
+    constexpr std::size_t kVec = sizeof(Vec<T>);
+    const bool slot = kVec == 3 * sizeof(T) && offsetof(Slot, t1) == offsetof(Slot, n) + kVec &&
                       offsetof(Slot, t2) == offsetof(Slot, n) + 2 * kVec &&
                       offsetof(Slot, cross_b) == offsetof(Slot, cross_a) + 3 * kVec &&
                       offsetof(Slot, response_a) == offsetof(Slot, cross_a) + 6 * kVec &&
                       offsetof(Slot, response_b) == offsetof(Slot, cross_a) + 9 * kVec;
-    return cpuHasAvx512() && directions && products && slot;
+    const bool cpu = std::is_same_v<T, EightLanes> ? cpuHasAvx512() : std::is_same_v<T, Lanes> && cpuHasAvx();
+    return cpu && directions && products && slot;
   }();
   return transposed;
 #else
   return false;
 #endif
 }
+template bool slotLoadsTransposed<Lanes>();
+template bool slotLoadsTransposed<EightLanes>();
 
-void loadFullSlot(PointLanes<EightLanes>& s, const SolverContact* const* contacts) {
+template <class T>
+void loadFullSlot(PointLanes<T>& s, const SolverContact* const* contacts) {
+  constexpr std::size_t kWidth = kLaneCount<T>;
 #ifdef RIGID_BODY_WIDE_CONTACT_LANES
-  const double* directions[8];
-  const double* products[8];
-  for (std::size_t l = 0; l < 8; ++l) directions[l] = contacts[l]->n.data(), products[l] = contacts[l]->cross_a.data();
+  const double* directions[kWidth];
+  const double* products[kWidth];
+  for (std::size_t l = 0; l < kWidth; ++l) directions[l] = contacts[l]->n.data(), products[l] = contacts[l]->cross_a.data();
   transposeIntoLanes(&s.n.x, directions, 9);             // n, t1, t2
   transposeIntoLanes(&s.cross_a[0].x, products, 36);     // cross_a, cross_b, response_a, response_b
-  for (std::size_t l = 0; l < 8; ++l) loadScalars(s, l, *contacts[l]);
+  for (std::size_t l = 0; l < kWidth; ++l) loadScalars(s, l, *contacts[l]);
 #else
-  for (std::size_t l = 0; l < 8; ++l) loadPoint(s, l, *contacts[l]);
+  for (std::size_t l = 0; l < kWidth; ++l) loadPoint(s, l, *contacts[l]);
 #endif
 }
+template void loadFullSlot(PointLanes<Lanes>&, const SolverContact* const*);
+template void loadFullSlot(PointLanes<EightLanes>&, const SolverContact* const*);
 
 std::size_t bestLaneCount(bool wide_instructions) {
 #ifdef RIGID_BODY_WIDE_CONTACT_LANES
@@ -195,7 +203,7 @@ void packGroups(const ManifoldColouring& colouring, const std::vector<SolverCont
       }
       // The slots every lane fills, eight lanes wide, by transposes where they may be; the rest lane by lane.
       std::size_t p = 0;
-      if constexpr (std::is_same_v<T, EightLanes>) {
+      if constexpr (!std::is_same_v<T, double>) {
         for (; transposed && p < fewest; ++p) {
           const SolverContact* lanes[kWidth];
           for (std::size_t l = 0; l < kWidth; ++l) lanes[l] = &contacts[g.first_contact[l] + p];
@@ -210,6 +218,16 @@ void packGroups(const ManifoldColouring& colouring, const std::vector<SolverCont
     }
   }
   groups.resize(used);
+}
+
+// Whether these groups' full slots are loaded by transposes (one lane never is).
+template <class T>
+bool fullSlotsTransposed(const std::vector<ManifoldLanes<T>>&) {
+  if constexpr (std::is_same_v<T, double>) {
+    return false;
+  } else {
+    return slotLoadsTransposed<T>();
+  }
 }
 
 // The impulses back into the contacts.
@@ -277,7 +295,7 @@ void LaneContactSolver::solve(std::vector<SolverContact>& contacts, std::vector<
   buffers.bodies.assign(body_end - body_base + 1, LaneBodyVelocity{{0, 0, 0}, {0, 0, 0}, 0.0, 0.0});
   gatherBodies(bodies, islands, count, body_base, buffers.bodies);
   const auto sweep = [&](auto& groups) {
-    const bool transposed = lanes.wide_instructions && slotLoadsTransposed();
+    const bool transposed = lanes.wide_instructions && fullSlotsTransposed(groups);
     packGroups(colouring_, contacts, body_base, buffers.order, groups, transposed);
     runSweepsWidest(lanes.wide_instructions, groups, buffers.bodies.data(), contacts.data(), sweeps, converged,
                     options.iterations);

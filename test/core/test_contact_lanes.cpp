@@ -265,13 +265,14 @@ TEST(ContactLanes, TheReadableSolverInTheSweepOrderGetsTheSameImpulsesToRounding
   EXPECT_GT(differs, 1e-6 * largest);
 }
 
-// A full slot loaded by transposes (where the CPU has AVX-512) holds the bits of the lane-by-lane loads: the
-// contacts' fields all different, every one of the slot's fields compared.
-TEST(ContactLanes, ASlotLoadedByTransposesHoldsTheLaneByLaneLoads) {
-  if (!slotLoadsTransposed()) GTEST_SKIP() << "this CPU or build loads the slots lane by lane only";
+// A full slot loaded by transposes (four lanes where the CPU has AVX, eight where it has AVX-512) holds the
+// bits of the lane-by-lane loads: the contacts' fields all different, every one of the slot's fields compared.
+template <class T>
+void expectTransposedSlotHoldsTheLaneByLaneLoads() {
+  constexpr std::size_t kWidth = kLaneCount<T>;
   std::mt19937 random(11);
   std::uniform_real_distribution<double> value(-1.0, 1.0);
-  std::vector<SolverContact> contacts(8);
+  std::vector<SolverContact> contacts(kWidth);
   for (SolverContact& c : contacts) {
     for (Eigen::Vector3d* v : {&c.r_a, &c.r_b, &c.n, &c.t1, &c.t2}) {
       *v = Eigen::Vector3d(value(random), value(random), value(random));
@@ -286,17 +287,25 @@ TEST(ContactLanes, ASlotLoadedByTransposesHoldsTheLaneByLaneLoads) {
     c.friction_impulse = Eigen::Vector2d(value(random), value(random));
     for (int i = 0; i < 4; ++i) c.tangent_mass.data()[i] = value(random), c.tangent_response.data()[i] = value(random);
   }
-  const SolverContact* lanes[8];
-  for (std::size_t l = 0; l < 8; ++l) lanes[l] = &contacts[l];
-  auto transposed = std::make_unique<PointLanes<EightLanes>>();
-  auto lane_by_lane = std::make_unique<PointLanes<EightLanes>>();
+  const SolverContact* lanes[kWidth];
+  for (std::size_t l = 0; l < kWidth; ++l) lanes[l] = &contacts[l];
+  auto transposed = std::make_unique<PointLanes<T>>();
+  auto lane_by_lane = std::make_unique<PointLanes<T>>();
   loadFullSlot(*transposed, lanes);
-  for (std::size_t l = 0; l < 8; ++l) loadPoint(*lane_by_lane, l, contacts[l]);
+  for (std::size_t l = 0; l < kWidth; ++l) loadPoint(*lane_by_lane, l, contacts[l]);
   const auto* a = reinterpret_cast<const double*>(transposed.get());
   const auto* b = reinterpret_cast<const double*>(lane_by_lane.get());
-  for (std::size_t i = 0; i < sizeof(PointLanes<EightLanes>) / sizeof(double); ++i) {
-    EXPECT_EQ(std::memcmp(a + i, b + i, sizeof(double)), 0) << "field " << i / 8 << ", lane " << i % 8;
+  for (std::size_t i = 0; i < sizeof(PointLanes<T>) / sizeof(double); ++i) {
+    EXPECT_EQ(std::memcmp(a + i, b + i, sizeof(double)), 0)
+        << kWidth << " lanes, field " << i / kWidth << ", lane " << i % kWidth;
   }
+}
+
+TEST(ContactLanes, ASlotLoadedByTransposesHoldsTheLaneByLaneLoads) {
+  bool any = false;
+  if (slotLoadsTransposed<integrators::Lanes>()) any = true, expectTransposedSlotHoldsTheLaneByLaneLoads<integrators::Lanes>();
+  if (slotLoadsTransposed<EightLanes>()) any = true, expectTransposedSlotHoldsTheLaneByLaneLoads<EightLanes>();
+  if (!any) GTEST_SKIP() << "this CPU or build loads the slots lane by lane only";
 }
 
 }  // namespace
