@@ -217,6 +217,7 @@ void Scene::stepColliders(std::int64_t steps, SceneStepResult& result) {
       }
     }
   }
+  contact_->countBatchedSteps(integrators_);
   result.steps = std::max(result.steps, done);
 }
 

@@ -85,6 +85,9 @@ class ContactStep {
   void wake(std::size_t k, std::vector<std::size_t>* woken = nullptr);
 
   const std::vector<std::size_t>& colliders() const { return colliders_; }
+  /// The free steps the batches took since the last call, counted into each collider's integrator (its
+  /// statistics): once a tick, not in every step, where a collider's integrator is a cold read.
+  void countBatchedSteps(std::vector<Integrator>& integrators);
   /// The contacts of colliding body k at the end of the last step (kept only while recording).
   const std::vector<Contact>& contacts(std::size_t k) const { return contacts_[k]; }
   /// Recording from now on; a scene that starts recording wakes its sleeping islands, so that their reports
@@ -165,6 +168,7 @@ class ContactStep {
   void stepFreeMotionInBatches(SceneBodies& bodies, const std::vector<char>& running, double h,
                                std::vector<StepStatus>& failed);
   std::vector<std::size_t> collider_of_;  // scratch of stepFreeMotionInBatches: scene body → collider, or none
+  std::vector<std::uint64_t> batched_steps_;  // per collider: free steps in batches not yet counted
   // The continuous test (continuous_collision.cpp): steps split while a body would move farther than it is
   // thick near something, and conservative advancement along the integrated path.
   static constexpr int kMaxStepSplits = 8;  // at most 2⁸ = 256 parts of a step

@@ -45,6 +45,7 @@ void ContactStep::stepFreeMotion(SceneBodies& bodies, const std::vector<char>& r
 void ContactStep::stepFreeMotionInBatches(SceneBodies& bodies, const std::vector<char>& running, double h,
                                           std::vector<StepStatus>& failed) {
   const std::size_t n = colliders_.size();
+  batched_steps_.resize(n, 0);  // zero between ticks (countBatchedSteps), so a scene edit shifts none
   collider_of_.assign(bodies.states.size(), kNoCollider);
   for (std::size_t k = 0; k < n; ++k) {
     collider_of_[colliders_[k]] = k;
@@ -61,7 +62,7 @@ void ContactStep::stepFreeMotionInBatches(SceneBodies& bodies, const std::vector
   const auto finish = [&](std::size_t body, const State& before, std::int64_t done, StepStatus status) {
     const std::size_t k = collider_of_[body];
     start_[k] = before;
-    bodies.integrators[body].countSteps(static_cast<std::uint64_t>(done));
+    batched_steps_[k] += static_cast<std::uint64_t>(done);
     if (status != StepStatus::kOk) failed[k] = status;
     placeRange(bodies.states, k, k + 1);
   };
@@ -69,6 +70,13 @@ void ContactStep::stepFreeMotionInBatches(SceneBodies& bodies, const std::vector
   forEachRange(pool_, bodies.states.size(), per_block, [&](std::size_t, std::size_t first, std::size_t end) {
     bodies.batches->step(arrays, first, end, h, 1, admit, finish);
   });
+}
+
+void ContactStep::countBatchedSteps(std::vector<Integrator>& integrators) {
+  for (std::size_t k = 0; k < batched_steps_.size() && k < colliders_.size(); ++k) {
+    if (batched_steps_[k] != 0) integrators[colliders_[k]].countSteps(batched_steps_[k]);
+  }
+  batched_steps_.assign(batched_steps_.size(), 0);
 }
 
 }  // namespace contact
