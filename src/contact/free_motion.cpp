@@ -58,12 +58,17 @@ void ContactStep::stepFreeMotionInBatches(SceneBodies& bodies, const std::vector
     const std::size_t k = collider_of_[body];
     return k != kNoCollider && running[k] != 0;
   };
-  // A refused step leaves the body's state as it was before it (BatchStepper::step), as Integrator::step does.
+  // A refused step's lane holds what the step gave (non-finite): the body goes back to its state before the
+  // step, as Integrator::step leaves it. Left there, the step's finiteness check refused the whole contact
+  // step and every pair lost its warm start.
   const auto finish = [&](std::size_t body, const State& before, std::int64_t done, StepStatus status) {
     const std::size_t k = collider_of_[body];
     start_[k] = before;
     batched_steps_[k] += static_cast<std::uint64_t>(done);
-    if (status != StepStatus::kOk) failed[k] = status;
+    if (status != StepStatus::kOk) {
+      failed[k] = status;
+      bodies.states[body] = before;
+    }
     placeRange(bodies.states, k, k + 1);
   };
   const std::size_t per_block = scaledBlock(bodies_per_block_, kFreeStepBlocks);
