@@ -110,7 +110,9 @@ void loadFullSlot(PointLanes<T>& s, const SolverContact* const* contacts) {
 #ifdef RIGID_BODY_WIDE_CONTACT_LANES
   const double* directions[kWidth];
   const double* products[kWidth];
-  for (std::size_t l = 0; l < kWidth; ++l) directions[l] = contacts[l]->n.data(), products[l] = contacts[l]->cross_a.data();
+  for (std::size_t l = 0; l < kWidth; ++l) {
+    directions[l] = contacts[l]->n.data(), products[l] = contacts[l]->cross_a.data();
+  }
   transposeIntoLanes(&s.n.x, directions, 9);             // n, t1, t2
   transposeIntoLanes(&s.cross_a[0].x, products, 36);     // cross_a, cross_b, response_a, response_b
   for (std::size_t l = 0; l < kWidth; ++l) loadScalars(s, l, *contacts[l]);

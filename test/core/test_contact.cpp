@@ -338,15 +338,17 @@ TEST(Contact, ACollidingBodyWhoseStepIsRefusedStopsAloneWhileTheBodiesSteppedBes
   // the integrator has them); the second is driven to overflow. It keeps its last good state and stops; the
   // others' trajectories are those of a scene without the push, to the bit (the continuous test off: the
   // pushed body's speed would split the steps of the whole scene, docs/contact.md "No tunnelling").
-  for (const IntegratorType type : {IntegratorType::kRk4, IntegratorType::kSemiImplicitEuler, IntegratorType::kDopri5}) {
+  const IntegratorType types[] = {IntegratorType::kRk4, IntegratorType::kSemiImplicitEuler, IntegratorType::kDopri5};
+  for (const IntegratorType type : types) {
     const auto scene = [type](bool push) {
       ContactSetup setup;
       setup.settings.continuous = false;
       setup.environment = {plane(Eigen::Vector3d::UnitZ(), 0.0, 0.5)};
       std::vector<BodyDefinition> bodies;
       for (int i = 0; i < 4; ++i) {
-        BodyDefinition b = body(MassProperties::box(1.0, Eigen::Vector3d(0.2, 0.2, 0.2)), Eigen::Vector3d(0.5 * i, 0, 0.1),
-                                Eigen::Quaterniond::Identity(), Eigen::Vector3d(0.1 * i, 0, 0), kDown);
+        BodyDefinition b = body(MassProperties::box(1.0, Eigen::Vector3d(0.2, 0.2, 0.2)),
+                                Eigen::Vector3d(0.5 * i, 0, 0.1), Eigen::Quaterniond::Identity(),
+                                Eigen::Vector3d(0.1 * i, 0, 0), kDown);
         b.takes_input = true;
         bodies.push_back(b);
         setup.bodies.push_back(shapeOf(ShapeType::kBox, Eigen::Vector3d(0.2, 0.2, 0.2), 0.5, 0.0));

@@ -303,7 +303,9 @@ void expectTransposedSlotHoldsTheLaneByLaneLoads() {
 
 TEST(ContactLanes, ASlotLoadedByTransposesHoldsTheLaneByLaneLoads) {
   bool any = false;
-  if (slotLoadsTransposed<integrators::Lanes>()) any = true, expectTransposedSlotHoldsTheLaneByLaneLoads<integrators::Lanes>();
+  if (slotLoadsTransposed<integrators::Lanes>()) {
+    any = true, expectTransposedSlotHoldsTheLaneByLaneLoads<integrators::Lanes>();
+  }
   if (slotLoadsTransposed<EightLanes>()) any = true, expectTransposedSlotHoldsTheLaneByLaneLoads<EightLanes>();
   if (!any) GTEST_SKIP() << "this CPU or build loads the slots lane by lane only";
 }
