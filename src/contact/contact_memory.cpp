@@ -5,6 +5,7 @@
 #include "contact_step.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <new>
 #include <tuple>
 
@@ -53,7 +54,12 @@ void ContactStep::makeContact(const ContactPoint& point, const SceneBodies& bodi
   if (c.a != kEnvironment) c.r_a = point.on_a - bodies.states[colliders_[point.a]].p_WB;
   if (c.b != kEnvironment) c.r_b = point.on_b - bodies.states[colliders_[point.b]].p_WB;
   c.n = point.normal;
-  CollisionWorld::tangentBasis(c.n, c.t1, c.t2);
+  // The basis is a function of the normal's bits: a face's points, which share them, share it.
+  if (std::memcmp(c.n.data(), lookup.basis_normal.data(), sizeof(double) * 3) != 0) {
+    CollisionWorld::tangentBasis(c.n, lookup.basis_t1, lookup.basis_t2);
+    lookup.basis_normal = c.n;
+  }
+  c.t1 = lookup.basis_t1, c.t2 = lookup.basis_t2;
   c.separation = point.distance;
   const ContactMaterial material = combined(point.a, point.b);
   c.friction = material.friction;

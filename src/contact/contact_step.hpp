@@ -123,13 +123,16 @@ class ContactStep {
     Eigen::Vector3d anchor_lo, anchor_hi;
   };
   // What a pass over the points last looked up for a pair (a pair's points follow each other, and each asks
-  // several times): whether it was touching, and its run of warm_. Each pass (and each thread of one) has its
-  // own, dropped at its end: touching_ and warm_ do not change within a pass.
+  // several times): whether it was touching, and its run of warm_; and the tangent basis of the last normal
+  // (a face's points share theirs). Each pass (and each thread of one) has its own, dropped at its end:
+  // touching_ and warm_ do not change within a pass.
   struct PairLookup {
     std::uint64_t touching_key = ~std::uint64_t{0};
     bool touching = false;
     std::uint64_t warm_key = ~std::uint64_t{0};
     std::size_t warm_begin = 0, warm_end = 0;
+    Eigen::Vector3d basis_normal = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+    Eigen::Vector3d basis_t1, basis_t2;
   };
   std::uint64_t pairKey(std::size_t a, std::size_t b) const;
   bool wasTouching(std::uint64_t key) const;
