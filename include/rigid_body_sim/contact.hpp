@@ -82,6 +82,7 @@ struct ImpactEvent {
 struct ContactStatistics {
   std::int64_t located_impacts = 0;    ///< impacts resolved at their located time
   std::int64_t swept_impacts = 0;      ///< impacts found by the swept test (a fast body would have passed)
+  std::int64_t split_steps = 0;        ///< steps taken in halves: a fast body had something near its path
   std::int64_t refused_steps = 0;      ///< steps whose contact result was not finite (bodies kept their state)
   double max_penetration = 0.0;        ///< deepest penetration seen at the end of a free step [m]
   std::int64_t out_of_range = 0;       ///< bodies now beyond 1e6 m of the origin: out of the contact world

@@ -36,15 +36,15 @@ void ContactStep::addContact(const ContactPoint& point, const SceneBodies& bodie
   restoreWokenPairs();  // solverIndex may have woken a sleeping body
   std::pair<Eigen::Vector3d, Eigen::Vector3d> anchors;
   PairLookup lookup;
-  makeContact(point, bodies, false, lookup, c, anchors, nullptr);
+  makeContact(point, bodies, false, 0.0, lookup, c, anchors, nullptr);
   solver_contacts_.push_back(c);
   solver_points_.push_back(&point);
   solver_anchors_.push_back(anchors);
 }
 
-void ContactStep::makeContact(const ContactPoint& point, const SceneBodies& bodies, bool touching, PairLookup& lookup,
-                              SolverContact& c, std::pair<Eigen::Vector3d, Eigen::Vector3d>& anchors,
-                              Eigen::Vector3d* local) const {
+void ContactStep::makeContact(const ContactPoint& point, const SceneBodies& bodies, bool touching, double h,
+                              PairLookup& lookup, SolverContact& c,
+                              std::pair<Eigen::Vector3d, Eigen::Vector3d>& anchors, Eigen::Vector3d* local) const {
   const std::size_t a = c.a, b = c.b;
   // Default-initialised in place: its members' own initialisers. `c = SolverContact()` zeroed a whole
   // temporary (the products prepareContactRows writes too) and copied it over.
@@ -70,7 +70,7 @@ void ContactStep::makeContact(const ContactPoint& point, const SceneBodies& bodi
   // Where the point sits on its body (a half-space pair's matches by its feature instead): the warm start's
   // match now, the warm point's place for the next step.
   if (local != nullptr) *local = point.feature >= 0 ? Eigen::Vector3d::Zero() : localPoint(point, bodies);
-  const WarmPoint* last = touching && local != nullptr ? warmStart(c, point, *local, lookup) : nullptr;
+  const WarmPoint* last = touching && local != nullptr ? warmStart(c, point, *local, h, lookup) : nullptr;
   // A point that stuck last step keeps the anchors where it began to stick, unless one of them has left the
   // point by more than the warm-start match.
   anchors = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
@@ -105,7 +105,8 @@ Eigen::Vector3d ContactStep::localPoint(const ContactPoint& point, const SceneBo
 }
 
 const ContactStep::WarmPoint* ContactStep::warmStart(SolverContact& c, const ContactPoint& point,
-                                                     const Eigen::Vector3d& local, PairLookup& lookup) const {
+                                                     const Eigen::Vector3d& local, double h,
+                                                     PairLookup& lookup) const {
   const std::uint64_t key = pairKey(point.a, point.b);
   if (key != lookup.warm_key) {
     // The pairs come mostly in last step's order: a pair's run often begins where the one looked up before
@@ -133,9 +134,14 @@ const ContactStep::WarmPoint* ContactStep::warmStart(SolverContact& c, const Con
     }
   }
   if (best == nullptr) return nullptr;
+  // The impulses stood for a force over last step's h: a step of another length (one of a step split for a
+  // fast body, docs/contact.md "No tunnelling") starts from that force, h / h_last of them (Box2D's dtRatio).
+  // Taken whole into a shorter step, an unconverged solve (a heavy body on a light one) kept the excess, and
+  // the force that pushed the bodies apart had done more work than it could.
+  const double scale = best->step == h ? 1.0 : h / best->step;
   // The pair's order may differ from last step's: impulses are stored as acting on the pair's lower object.
-  const double sign = point.a < point.b ? 1.0 : -1.0;
-  c.normal_impulse = best->normal_impulse;
+  const double sign = point.a < point.b ? scale : -scale;
+  c.normal_impulse = scale * best->normal_impulse;
   c.friction_impulse = sign * Eigen::Vector2d(c.t1.dot(best->friction_impulse_W), c.t2.dot(best->friction_impulse_W));
   return best;
 }
@@ -163,10 +169,15 @@ ContactStep::WarmPoint ContactStep::warmPointOf(std::size_t i, const SceneBodies
   if (sticking && starts) {
     anchors = {inObjectFrame(point.a, point.on_a, bodies), inObjectFrame(point.b, point.on_b, bodies)};
   }
+  // Only a sustained contact's impulses stand for a force that goes on: an arrival's (a landing, a speculative
+  // point's stop) are mostly the momentum it stopped. Repeated next step, that impact pushed the bodies apart
+  // again, and where the solve cannot take it back within its sweeps (a heavy body landing on a light one:
+  // each sweep changes the impulse by the light body's share only) the bodies gained the impact's energy.
+  const double carried = c.sustained ? 1.0 : 0.0;
   const bool lower_a = point.a < point.b;
-  return {pairKey(point.a, point.b), point.feature, solver_local_[i], c.normal_impulse,
-          (lower_a ? 1.0 : -1.0) * friction, sticking, lower_a ? anchors.first : anchors.second,
-          lower_a ? anchors.second : anchors.first};
+  return {pairKey(point.a, point.b), point.feature, sticking, solver_local_[i], carried * c.normal_impulse,
+          (lower_a ? carried : -carried) * friction, lower_a ? anchors.first : anchors.second,
+          lower_a ? anchors.second : anchors.first, h};
 }
 
 void ContactStep::reportContact(std::size_t i) {

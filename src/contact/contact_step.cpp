@@ -226,6 +226,7 @@ void ContactStep::stepSplitting(SceneBodies& bodies, const std::vector<char>& ru
   // A body that would move farther than it is thick, with something near its path, steps in halves (each
   // half decides again): docs/contact.md, "No tunnelling".
   if (settings_.continuous && splits < kMaxStepSplits && needsShorterStep(bodies, running, h)) {
+    ++statistics_.split_steps;
     stepSplitting(bodies, running, 0.5 * h, failed, splits + 1);
     stepSplitting(bodies, running, 0.5 * h, failed, splits + 1);
     return;
@@ -369,12 +370,12 @@ void ContactStep::fillBodies(const SceneBodies& bodies, std::size_t first_island
   }
 }
 
-void ContactStep::fillContacts(const SceneBodies& bodies, std::size_t first, std::size_t end) {
+void ContactStep::fillContacts(const SceneBodies& bodies, double h, std::size_t first, std::size_t end) {
   PairLookup lookup;
   for (std::size_t j = first; j < end; ++j) {
     solver_contacts_[j].a = solver_pairs_[j].first, solver_contacts_[j].b = solver_pairs_[j].second;
-    makeContact(*solver_points_[j], bodies, solver_touching_[j] != 0, lookup, solver_contacts_[j], solver_anchors_[j],
-                &solver_local_[j]);
+    makeContact(*solver_points_[j], bodies, solver_touching_[j] != 0, h, lookup, solver_contacts_[j],
+                solver_anchors_[j], &solver_local_[j]);
   }
 }
 
@@ -440,7 +441,7 @@ void ContactStep::solveResting(SceneBodies& bodies, double h) {
   island_finite_.assign(islands_.islands(), 1);
   SolverIslands::Hooks hooks;
   hooks.fill_bodies = [&](std::size_t, std::size_t first, std::size_t end) { fillBodies(bodies, first, end); };
-  hooks.fill_contacts = [&](std::size_t first, std::size_t end) { fillContacts(bodies, first, end); };
+  hooks.fill_contacts = [&](std::size_t first, std::size_t end) { fillContacts(bodies, h, first, end); };
   hooks.after = [&](std::size_t, std::size_t first, std::size_t end) { finishBlock(bodies, h, first, end); };
   islands_.solve(solver_contacts_, solver_bodies_, island_body_start_, solve, pool_, hooks);
   rememberTouching();

@@ -113,14 +113,15 @@ class ContactStep {
   struct WarmPoint {
     std::uint64_t key;
     int feature;            // ≥ 0: matched by feature; otherwise by position on the body
-    Eigen::Vector3d local;
-    double normal_impulse;
-    Eigen::Vector3d friction_impulse_W;
     // A sticking point's anchors (docs/contact.md, step 6) on the pair's lower and higher object, each in
     // that object's frame (the world's for the environment); anchored is false for a point that slid, and
     // after a step whose solve converged.
     bool anchored;
+    Eigen::Vector3d local;
+    double normal_impulse;
+    Eigen::Vector3d friction_impulse_W;
     Eigen::Vector3d anchor_lo, anchor_hi;
+    double step;  // the h of the step whose solve left these impulses [s]
   };
   // What a pass over the points last looked up for a pair (a pair's points follow each other, and each asks
   // several times): whether it was touching, and its run of warm_; and the tangent basis of the last normal
@@ -217,7 +218,7 @@ class ContactStep {
   // start and anchors (`touching`: in the resting solve, its pair touching at the end of the last step; a
   // located impact's are not warm-started, and have no `local`, the point's place on its body for the warm
   // point it leaves).
-  void makeContact(const ContactPoint& point, const SceneBodies& bodies, bool touching, PairLookup& lookup,
+  void makeContact(const ContactPoint& point, const SceneBodies& bodies, bool touching, double h, PairLookup& lookup,
                    SolverContact& c, std::pair<Eigen::Vector3d, Eigen::Vector3d>& anchors,
                    Eigen::Vector3d* local) const;
   // A located impact's contact (not warm-started), appended to the solver's lists.
@@ -229,7 +230,7 @@ class ContactStep {
   // fillBodies for the islands [first_island, end_island) and fillContacts for the contacts [first, end).
   void buildSolverLists();
   void fillBodies(const SceneBodies& bodies, std::size_t first_island, std::size_t end_island);
-  void fillContacts(const SceneBodies& bodies, std::size_t first, std::size_t end);
+  void fillContacts(const SceneBodies& bodies, double h, std::size_t first, std::size_t end);
   void solveResting(SceneBodies& bodies, double h);
   // After a block's solve: its bodies' states advanced by the impulses and moves, and its contacts as next
   // step's warm starts (with their anchors: only where the island's solve did not converge).
@@ -299,8 +300,8 @@ class ContactStep {
   ContactStatistics statistics_;
   Eigen::Vector3d localPoint(const ContactPoint& point, const SceneBodies& bodies) const;
   // The impulses of the point of last step's that `point` matches (`local`: its place on its body, as
-  // localPoint gives it), put in `contact`; that point, or null.
-  const WarmPoint* warmStart(SolverContact& contact, const ContactPoint& point, const Eigen::Vector3d& local,
+  // localPoint gives it), as the same force over this step's h, put in `contact`; that point, or null.
+  const WarmPoint* warmStart(SolverContact& contact, const ContactPoint& point, const Eigen::Vector3d& local, double h,
                              PairLookup& lookup) const;
   // A point between the world and a collision object's own frame (the environment's is the world's).
   Eigen::Vector3d inObjectFrame(std::size_t object, const Eigen::Vector3d& p_W, const SceneBodies& bodies) const;

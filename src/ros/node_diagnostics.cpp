@@ -138,6 +138,7 @@ void NodeDiagnostics::addBodies(diagnostic_updater::DiagnosticStatusWrapper& sta
     status.add("max penetration since reset [m]", contact.max_penetration);
     status.add("impacts located in time", contact.located_impacts);
     status.add("impacts found by the swept test", contact.swept_impacts);
+    status.add("steps split for a fast body", contact.split_steps);
     status.add("contact steps refused (non-finite)", contact.refused_steps);
     status.add("bodies out of contact range (1e6 m)", contact.out_of_range);
     status.add("bodies asleep", contact.sleeping_bodies);
