@@ -12,6 +12,10 @@ namespace contact {
 
 namespace {
 
+// The share of the energy change's terms within which limitEnergyGain takes a gain for rounding: the sums'
+// rounding is of order 1e-16 of them.
+constexpr double kEnergyGainTolerance = 1e-9;
+
 // The velocity change of body `s` along its three Jacobian columns (linear part d, angular part r × d) per
 // unit impulse along d: J_d = (d, r × d), and the contact's velocity along d is d·v + (r × d)·ω.
 // The environment (either side may be it) does not move and is not written: islands on other threads share
@@ -273,6 +277,33 @@ void solveImpact(std::vector<SolverContact>& contacts, std::vector<SolverBody>& 
     if (alpha < 1.0) scaleBack(contacts, bodies, compressed, restored, compression, alpha);
   }
   for (SolverContact& c : contacts) c.normal_floor = 0.0;
+}
+
+double limitEnergyGain(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range) {
+  // With Δv = dP / M and Δω = I⁻¹ dL, the impulses scaled by α change the kinetic energy by α a + α² b,
+  // a = Σ v₀·dP + ω₀·dL (v₀ = v − Δv, the velocities before them) and b = ½ Σ Δv·dP + Δω·dL ≥ 0.
+  double a = 0.0, b = 0.0, size = 0.0;
+  for (std::size_t s = std::max<std::size_t>(range.body_begin, 1); s < range.body_end; ++s) {  // 0: environment
+    const SolverBody& body = bodies[s];
+    const Eigen::Vector3d dv = body.inverse_mass * body.dP, dw = body.inverse_inertia_W * body.dL;
+    const double first = (body.v - dv).dot(body.dP) + (body.w - dw).dot(body.dL);
+    const double second = 0.5 * (dv.dot(body.dP) + dw.dot(body.dL));
+    a += first, b += second, size += std::abs(first) + second;
+  }
+  // Within rounding of the sums a converged solve's change may come out either side of zero.
+  if (!(a + b > kEnergyGainTolerance * size)) return 1.0;
+  const double alpha = largestShare(0.0, a, b);
+  for (std::size_t s = std::max<std::size_t>(range.body_begin, 1); s < range.body_end; ++s) {
+    SolverBody& body = bodies[s];
+    const Eigen::Vector3d dv = body.inverse_mass * body.dP, dw = body.inverse_inertia_W * body.dL;
+    body.v += (alpha - 1.0) * dv, body.w += (alpha - 1.0) * dw;
+    body.dP *= alpha, body.dL *= alpha;
+  }
+  for (std::size_t k = range.contact_begin; k < range.contact_end; ++k) {
+    contacts[k].normal_impulse *= alpha;
+    contacts[k].friction_impulse *= alpha;
+  }
+  return alpha;
 }
 
 void projectPositions(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, int iterations,

@@ -137,6 +137,13 @@ bool solveVelocities(std::vector<SolverContact>& contacts, std::vector<SolverBod
 /// Each body's dP and dL in `range` from its contacts' impulses (what solveVelocities ends with).
 void sumImpulses(const std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range);
 
+/// Scales back the impulses of the contacts in `range` (and the bodies' velocities, dP and dL, as sumImpulses
+/// left them) to the largest share, at most all, that does not raise the bodies' kinetic energy above what
+/// they had before the impulses: a solve that has converged never raises it (its impulses stop approaches and
+/// oppose slips), but one whose sweeps could not take back a first guess that was too large (a heavy body on
+/// a light one, each sweep moving the impulse by the light body's share) can. Returns the share kept.
+double limitEnergyGain(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveRange& range);
+
 /// An impact at one instant: Poisson's restitution with Coulomb friction, bounded in energy (docs/references.md,
 /// "An impact that never creates energy"). A compression solve (every point stopped, e = 0) gives each point its
 /// compression impulse p_c; a restitution solve then holds each point's normal impulse at (1 + e) p_c or more

@@ -71,6 +71,7 @@ void finishRestingContacts(std::vector<SolverContact>& contacts, std::vector<Sol
                            const RestingSolveSettings& settings, const SolveRange& range,
                            std::vector<double>& lift_share) {
   sumImpulses(contacts, bodies, range);
+  limitEnergyGain(contacts, bodies, range);
   // The impulses stand for a contact force constant over the step: besides the momenta they move the body
   // by c h Δv (and turn it by c h Δω), as the integrator would have moved it under that force; then the
   // projection.
