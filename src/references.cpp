@@ -240,5 +240,14 @@ BodyDefinition contactBody(const MassProperties& mass, const Eigen::Vector3d& p_
   return body;
 }
 
+double mechanicalEnergy(const Scene& scene) {
+  double energy = 0.0;
+  for (std::size_t i = 0; i < scene.bodyCount(); ++i) {
+    energy += kineticEnergy(scene.model(i).mass, scene.state(i)) +
+              potentialEnergy(scene.model(i).mass, scene.model(i).forces, scene.state(i));
+  }
+  return energy;
+}
+
 }  // namespace reference
 }  // namespace rigid_body

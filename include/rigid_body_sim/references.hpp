@@ -130,5 +130,9 @@ CollisionShape collisionShape(ShapeType type, const Eigen::Vector3d& size, doubl
 BodyDefinition contactBody(const MassProperties& mass, const Eigen::Vector3d& p_WB, const Eigen::Quaterniond& q_WB,
                            const Eigen::Vector3d& v_WB_W, const Eigen::Vector3d& w_WB_B, const Eigen::Vector3d& gravity_W);
 
+/// Every body's kinetic energy (translation and rotation) and potential energy under its gravity, summed [J]:
+/// what contact must never raise.
+double mechanicalEnergy(const Scene& scene);
+
 }  // namespace reference
 }  // namespace rigid_body

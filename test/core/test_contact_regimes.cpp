@@ -23,6 +23,7 @@ const Eigen::Vector3d kDown(0.0, 0.0, -kG);
 
 using reference::collisionShape;
 using reference::groundPlane;
+using reference::mechanicalEnergy;
 
 BodyDefinition body(const MassProperties& mass, const Eigen::Vector3d& p, const Eigen::Quaterniond& q,
                     const Eigen::Vector3d& v, const Eigen::Vector3d& w_B, const Eigen::Vector3d& gravity = kDown) {
@@ -41,15 +42,6 @@ MassProperties massOf(ShapeType type, const Eigen::Vector3d& size, double mass) 
     default:
       return MassProperties::box(mass, size);
   }
-}
-
-double mechanicalEnergy(const Scene& scene) {
-  double energy = 0.0;
-  for (std::size_t i = 0; i < scene.bodyCount(); ++i) {
-    energy += kineticEnergy(scene.model(i).mass, scene.state(i)) +
-              potentialEnergy(scene.model(i).mass, scene.model(i).forces, scene.state(i));
-  }
-  return energy;
 }
 
 }  // namespace

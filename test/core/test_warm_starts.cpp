@@ -9,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include "rigid_body_sim/kinematics.hpp"
 #include "rigid_body_sim/references.hpp"
 #include "rigid_body_sim/scene.hpp"
 #include "random_solver_bodies.hpp"
@@ -24,6 +23,7 @@ const Eigen::Vector3d kZero = Eigen::Vector3d::Zero();
 
 using reference::collisionShape;
 using reference::groundPlane;
+using reference::mechanicalEnergy;
 
 BodyDefinition resting(const MassProperties& mass, const Eigen::Vector3d& p, const Eigen::Vector3d& v = kZero) {
   return reference::contactBody(mass, p, Eigen::Quaterniond::Identity(), v, kZero, kDown);
@@ -38,15 +38,6 @@ MassProperties massOf(const CollisionShape& shape, double mass) {
     default:
       return MassProperties::box(mass, shape.size);
   }
-}
-
-double mechanicalEnergy(const Scene& scene) {
-  double energy = 0.0;
-  for (std::size_t i = 0; i < scene.bodyCount(); ++i) {
-    energy += kineticEnergy(scene.model(i).mass, scene.state(i)) +
-              potentialEnergy(scene.model(i).mass, scene.model(i).forces, scene.state(i));
-  }
-  return energy;
 }
 
 // A solver body's kinetic energy, ½ M v² + ½ ωᵀ I ω.

@@ -17,12 +17,13 @@
 #include <random>
 #include <vector>
 
-#include "rigid_body_sim/kinematics.hpp"
+#include "rigid_body_sim/references.hpp"
 #include "rigid_body_sim/scene.hpp"
 
 namespace {
 
 using namespace rigid_body;
+using reference::mechanicalEnergy;
 
 constexpr double kG = 9.81;
 
@@ -97,15 +98,6 @@ Heap randomHeap(std::mt19937& random) {
     heap.setup.bodies.push_back(shape);
   }
   return heap;
-}
-
-double mechanicalEnergy(const Scene& scene) {
-  double energy = 0.0;
-  for (std::size_t i = 0; i < scene.bodyCount(); ++i) {
-    energy += kineticEnergy(scene.model(i).mass, scene.state(i)) +
-              potentialEnergy(scene.model(i).mass, scene.model(i).forces, scene.state(i));
-  }
-  return energy;
 }
 
 // How far the body's lowest point is below the ground (z = 0), ≤ 0 when it is above.
