@@ -140,9 +140,10 @@ const ContactStep::WarmPoint* ContactStep::warmStart(SolverContact& c, const Con
   // the force that pushed the bodies apart had done more work than it could.
   const double scale = best->step == h ? 1.0 : h / best->step;
   // The pair's order may differ from last step's: impulses are stored as acting on the pair's lower object.
-  const double sign = point.a < point.b ? scale : -scale;
+  const double friction_scale = point.a < point.b ? scale : -scale;
   c.normal_impulse = scale * best->normal_impulse;
-  c.friction_impulse = sign * Eigen::Vector2d(c.t1.dot(best->friction_impulse_W), c.t2.dot(best->friction_impulse_W));
+  c.friction_impulse =
+      friction_scale * Eigen::Vector2d(c.t1.dot(best->friction_impulse_W), c.t2.dot(best->friction_impulse_W));
   return best;
 }
 
@@ -206,7 +207,7 @@ void ContactStep::indexWarmPoints() {
   // Each pair's points follow each other as the solve made them (a pair's points are consecutive in the
   // detection and in its island), so they are indexed where they lie. Should a pair's points ever not be
   // consecutive, they are sorted by pair first, each pair's in their order (as (key, position) pairs and
-  // gathered: a warm point is 14 doubles): the lookups find the same points in the same order either way.
+  // gathered: a warm point is 16 doubles): the lookups find the same points in the same order either way.
   const auto keyOf = [&](std::size_t i) { return warm_[i].key; };
   if (warm_runs_.build(warm_.size(), keyOf)) return;
   warm_order_.clear();

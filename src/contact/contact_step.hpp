@@ -113,13 +113,13 @@ class ContactStep {
   struct WarmPoint {
     std::uint64_t key;
     int feature;            // ≥ 0: matched by feature; otherwise by position on the body
-    // A sticking point's anchors (docs/contact.md, step 6) on the pair's lower and higher object, each in
-    // that object's frame (the world's for the environment); anchored is false for a point that slid, and
-    // after a step whose solve converged.
-    bool anchored;
+    bool anchored;          // anchor_lo and anchor_hi hold (below); beside feature, in its padding
     Eigen::Vector3d local;
     double normal_impulse;
     Eigen::Vector3d friction_impulse_W;
+    // A sticking point's anchors (docs/contact.md, step 6) on the pair's lower and higher object, each in
+    // that object's frame (the world's for the environment); not anchored for a point that slid, and after a
+    // step whose solve converged.
     Eigen::Vector3d anchor_lo, anchor_hi;
     double step;  // the h of the step whose solve left these impulses [s]
   };
