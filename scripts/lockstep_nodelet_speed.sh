@@ -12,7 +12,8 @@ prepare_node_run 11414
 scene=$(mktemp --suffix=.yaml)
 result=$(mktemp)
 echo "machine: $(machine_description); integrator ${INTEGRATOR:-rk4}, dt 1 ms, outputs at 100 Hz"
-for n in "${@:-1 1000}"; do
+(($# > 0)) || set -- 1 1000
+for n in "$@"; do
   write_swarm_scene "$n" "$scene"
   ns="/nodelet_$n"
   rosparam load "$scene" "$ns/rigid_body_node"

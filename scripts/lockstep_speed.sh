@@ -9,7 +9,8 @@ source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 prepare_node_run 11413
 scene=$(mktemp --suffix=.yaml)
 echo "machine: $(machine_description); integrator ${INTEGRATOR:-rk4}, dt 1 ms, outputs at 100 Hz"
-for n in "${@:-1 1000}"; do
+(($# > 0)) || set -- 1 1000
+for n in "$@"; do
   write_swarm_scene "$n" "$scene"
   rosparam load "$scene" "/lockstep_$n/rigid_body_node"
   rosparam set /use_sim_time true

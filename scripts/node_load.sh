@@ -8,7 +8,8 @@ source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 prepare_node_run 11412
 scene=$(mktemp --suffix=.yaml)
 echo "machine: $(machine_description); integrator ${INTEGRATOR:-rk4}, dt 1 ms, rate 100 Hz"
-for bodies in "${@:-1 1000}"; do
+(($# > 0)) || set -- 1 1000
+for bodies in "$@"; do
   for n in $bodies; do
     write_swarm_scene "$n" "$scene"
     rosparam load "$scene" "/load_$n/rigid_body_node"

@@ -16,21 +16,13 @@ constexpr uint32_t kQueueSize = 100;
 constexpr rigid_body::Nanoseconds kStampMargin = 3600LL * 1000000000LL;
 }  // namespace
 
-ForeignTransforms::ForeignTransforms(tf2::BufferCore& buffer, const OwnTransforms& own) : buffer_(buffer), own_(own) {
-  nh_.setCallbackQueue(&queue_);
-  tf_ = nh_.subscribe<tf2_msgs::TFMessage>(
+ForeignTransforms::ForeignTransforms(tf2::BufferCore& buffer, const OwnTransforms& own, ros::NodeHandle& nh)
+    : buffer_(buffer), own_(own) {
+  tf_ = nh.subscribe<tf2_msgs::TFMessage>(
       "/tf", kQueueSize, [this](const ros::MessageEvent<tf2_msgs::TFMessage const>& event) { onTransforms(event, false); });
-  tf_static_ = nh_.subscribe<tf2_msgs::TFMessage>(
+  tf_static_ = nh.subscribe<tf2_msgs::TFMessage>(
       "/tf_static", kQueueSize,
       [this](const ros::MessageEvent<tf2_msgs::TFMessage const>& event) { onTransforms(event, true); });
-  thread_ = std::thread([this] {
-    while (running_) queue_.callAvailable(ros::WallDuration(0.01));
-  });
-}
-
-ForeignTransforms::~ForeignTransforms() {
-  running_ = false;
-  thread_.join();
 }
 
 void ForeignTransforms::onTransforms(const ros::MessageEvent<tf2_msgs::TFMessage const>& event, bool is_static) {

@@ -11,16 +11,12 @@ void OwnTransforms::advertise(ros::NodeHandle& nh) { publisher_ = nh.advertise<t
 void OwnTransforms::publish(const std::vector<geometry_msgs::TransformStamped>& transforms) {
   auto message = boost::make_shared<tf2_msgs::TFMessage>();
   message->transforms = transforms;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    recent_.push_back(message);
-    if (recent_.size() > kRemembered) recent_.pop_front();
-  }
+  recent_.push_back(message);
+  if (recent_.size() > kRemembered) recent_.pop_front();
   publisher_.publish(message);
 }
 
 bool OwnTransforms::isOwn(const tf2_msgs::TFMessage* message) const {
-  std::lock_guard<std::mutex> lock(mutex_);
   // Newest first: a message the listener is not late for is found at once.
   return std::any_of(recent_.rbegin(), recent_.rend(),
                      [message](const tf2_msgs::TFMessageConstPtr& own) { return own.get() == message; });

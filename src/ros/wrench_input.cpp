@@ -43,7 +43,7 @@ WrenchInput::WrenchInput(ros::NodeHandle& nh, const NodeConfig& config, rigid_bo
     : config_(config),
       world_(world),
       now_(std::move(now)),
-      foreign_transforms_(tf_buffer_, own_transforms),
+      foreign_transforms_(tf_buffer_, own_transforms, nh),
       nh_(nh) {
   if (!config.publish.per_body_topics) {
     // One subscriber for the whole scene; the bodies found by name.

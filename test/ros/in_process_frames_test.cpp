@@ -43,7 +43,7 @@ TEST(InProcessFrames, AWrenchInAFrameAnotherPublisherOfTheProcessSendsIsConverte
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   while ((ros::WallTime::now() - start).toSec() < 10.0 && force.isZero()) {
     broadcaster.sendTransform(sensorFrame(ros::Time::now()));
-    // Once the listener has had the frame for a while (it runs on its own thread), the wrench goes out.
+    // Once the listener has had the frame for a while, the wrench goes out.
     if ((ros::WallTime::now() - start).toSec() > 0.5 && wrench.getNumSubscribers() > 0) wrench.publish(push);
     ros::WallDuration(0.02).sleep();
     ros::spinOnce();

@@ -5,13 +5,9 @@
 // a pose the World holds exactly. Lookups through a body of this node use the World's pose instead (WrenchInput).
 #pragma once
 
-#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <tf2/buffer_core.h>
 #include <tf2_msgs/TFMessage.h>
-
-#include <atomic>
-#include <thread>
 
 #include "rigid_body_sim/ros/own_transforms.hpp"
 
@@ -19,10 +15,12 @@ namespace rigid_body_ros {
 
 class ForeignTransforms {
  public:
-  /// Fills `buffer` from /tf (but for this node's own messages) and /tf_static, on a thread of its own, as
-  /// tf2_ros's listener does: the buffer stays current while the node's spinner is busy.
-  ForeignTransforms(tf2::BufferCore& buffer, const OwnTransforms& own);
-  ~ForeignTransforms();
+  /// Fills `buffer` from /tf (but for this node's own messages) and /tf_static, in callbacks on `nh`'s queue:
+  /// the simulator's own, whose one thread also converts the wrenches that read the buffer and publishes the
+  /// node's /tf. Not on a thread of their own, as tf2_ros's listener has them: the node's own /tf, handed
+  /// straight back within the process, then woke that thread at every output only to be dropped
+  /// (docs/performance_log.md, "Lockstep as a nodelet").
+  ForeignTransforms(tf2::BufferCore& buffer, const OwnTransforms& own, ros::NodeHandle& nh);
   ForeignTransforms(const ForeignTransforms&) = delete;
   ForeignTransforms& operator=(const ForeignTransforms&) = delete;
 
@@ -31,12 +29,8 @@ class ForeignTransforms {
 
   tf2::BufferCore& buffer_;
   const OwnTransforms& own_;
-  ros::CallbackQueue queue_;
-  ros::NodeHandle nh_;
   ros::Subscriber tf_, tf_static_;
   ros::Time last_update_;
-  std::atomic<bool> running_{true};
-  std::thread thread_;
 };
 
 }  // namespace rigid_body_ros

@@ -1,7 +1,8 @@
 // The simulator's own /tf messages, told apart from everybody else's when they come back into its tf
 // listener. They go out as shared pointers, and roscpp hands a subscriber in the same process the very
 // message published, so its address names it. Other publishers in the process (sibling nodelets in a
-// manager) deliver other addresses, and their transforms go into the buffer.
+// manager) deliver other addresses, and their transforms go into the buffer. Used by the simulator's one
+// thread (it publishes, and its queue's callbacks ask), so nothing is locked.
 #pragma once
 
 #include <geometry_msgs/TransformStamped.h>
@@ -9,7 +10,6 @@
 #include <tf2_msgs/TFMessage.h>
 
 #include <deque>
-#include <mutex>
 #include <vector>
 
 namespace rigid_body_ros {
@@ -29,7 +29,6 @@ class OwnTransforms {
 
  private:
   ros::Publisher publisher_;
-  mutable std::mutex mutex_;  // publish() runs on the simulator's thread, isOwn() on the listener's
   std::deque<tf2_msgs::TFMessageConstPtr> recent_;
 };
 
