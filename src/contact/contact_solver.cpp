@@ -242,9 +242,11 @@ void solveImpact(std::vector<SolverContact>& contacts, std::vector<SolverBody>& 
   // Compression: every point stopped (e = 0); what restitution each point has left waits for the next phase.
   std::vector<double> restitution(contacts.size());
   std::vector<Eigen::Vector3d> zero(contacts.size(), Eigen::Vector3d::Zero()), compression(contacts.size());
+  // A point still apart keeps its speculative target (< 0: it may close its gap): it has not arrived, so it
+  // neither bounces nor is stopped, only kept from passing the surface (located_impacts.cpp's arrivals).
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     restitution[k] = contacts[k].target_speed > 0.0 ? contacts[k].restitution : 0.0;
-    contacts[k].target_speed = 0.0;
+    contacts[k].target_speed = std::min(0.0, contacts[k].target_speed);
   }
   solveVelocities(contacts, bodies, options);
   compressed.take(bodies);

@@ -150,7 +150,9 @@ double limitEnergyGain(std::vector<SolverContact>& contacts, std::vector<SolverB
 /// (e only where the approach beat the restitution threshold) with friction on the larger disc. Where the two
 /// together would raise the bodies' kinetic energy, the restitution phase is scaled back to the largest share
 /// that does not (a root of a quadratic: the energy is quadratic in a scaled impulse). Frictionless single
-/// points keep Newton's v⁺ₙ = −e v⁻ₙ exactly. Each body's dP and dL are the impact's total.
+/// points keep Newton's v⁺ₙ = −e v⁻ₙ exactly. A point whose target is below zero is still apart (a speculative
+/// point: it may close at that speed, no faster) and keeps its target in both phases, without restitution.
+/// Each body's dP and dL are the impact's total.
 void solveImpact(std::vector<SolverContact>& contacts, std::vector<SolverBody>& bodies, const SolveOptions& options);
 
 /// Position projection: moves bodies apart along the normals until no penetration beyond `slop` remains

@@ -322,15 +322,29 @@ void ContactStep::buildSolverLists() {
   admitted_links_.clear();
   admitted_touching_.clear();
   PairLookup lookup;
-  std::uint64_t admitted_pair = ~std::uint64_t{0};
+  std::uint64_t admitted_pair = ~std::uint64_t{0}, run_key = ~std::uint64_t{0};
+  bool run_admitted = false;
   for (std::size_t i = 0; i < points_.size(); ++i) {
     const ContactPoint& point = points_[i];
     const std::uint64_t key = pairKey(point.a, point.b);
+    const bool touching = wasTouching(key, lookup);
+    if (key != run_key) {
+      // A pair is admitted if it was touching and a point is within the slop, or if a point now touches (a
+      // pair's points follow each other). Then its points within the slop all are: a face landing with some
+      // corners in and the rest not yet (a hair above) had only those in admitted, the others went on
+      // approaching, unseen by the solve, and were a step's travel deep in the next step.
+      run_key = key, run_admitted = false;
+      for (std::size_t j = i; j < points_.size() && pairKey(points_[j].a, points_[j].b) == key; ++j) {
+        if (!points_[j].speculative && points_[j].distance <= (touching ? settings_.penetration_slop : 0.0)) {
+          run_admitted = true;
+          break;
+        }
+      }
+    }
     // A speculative point (after its pair's others) only with a pair that is admitted.
     if (point.speculative && key != admitted_pair) continue;
-    const bool touching = wasTouching(key, lookup);
     if (!point.speculative) {
-      if (point.distance > (touching ? settings_.penetration_slop : 0.0)) continue;
+      if (!run_admitted || point.distance > settings_.penetration_slop) continue;
       admitted_pair = key;
     }
     statistics_.max_penetration = std::max(statistics_.max_penetration, -point.distance);

@@ -154,8 +154,13 @@ class ContactStep {
   bool restoreAfterFailedLocation(SceneBodies& bodies, const Candidate& candidate);
   void findCandidates(SceneBodies& bodies, const std::vector<char>& running, double h);
   bool resolveImpact(SceneBodies& bodies, Candidate candidate, double h);
-  void applyImpact(SceneBodies& bodies, const Candidate& candidate, double tau, double h);
+  /// The impact law at τ on the solver lists: the chain's impacts one after another if `sequential`, else
+  /// every contact at once, those from `arrivals` on still apart (they may close their gap within the rest of
+  /// the step); then the rest of the step for the impact's bodies.
+  void applyImpact(SceneBodies& bodies, const Candidate& candidate, double tau, double h, bool sequential,
+                   std::size_t arrivals);
   void gatherChain(SceneBodies& bodies, const Candidate& candidate, double tau);
+  void indexPointsByBody();
   void solveChain(const SolveOptions& options);
   static constexpr std::size_t kMaxChainBodies = 64;  // bodies an impact's chain reaches at most
   static constexpr std::size_t kMaxChainImpacts = 16; // pairwise impacts per pair of a chain at most
@@ -271,6 +276,9 @@ class ContactStep {
   std::vector<std::uint64_t> chain_pairs_;
   std::vector<std::pair<std::size_t, std::size_t>> chain_groups_;
   std::vector<ContactPoint> chain_points_;
+  // points_ by body (each body's indices, increasing), made for the first chain of a step.
+  std::vector<std::size_t> body_point_start_, body_point_index_;
+  bool body_points_indexed_ = false;
   std::vector<SolverContact> chain_contacts_;
   std::vector<Eigen::Vector3d> chain_dP_, chain_dL_;
   std::vector<char> outside_;               // per colliding body: beyond the contact range

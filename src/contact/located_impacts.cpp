@@ -14,6 +14,10 @@ namespace {
 
 // The least reach of a located impact's patch beyond its deepest point [m] (the slop, where it is larger).
 constexpr double kImpactPointTolerance = 1e-6;
+// How much faster than any of its points moved before the impact a point of the pair may close after it: a
+// body struck at one end turns about it, and its far side swings down (a uniform rod: as fast as its centre
+// fell; a margin for the rest).
+constexpr double kArrivalSpeedMargin = 2.0;
 // The farthest apart a pair's distance is evaluated while an impact is located [m].
 constexpr double kDistanceRange = 1e3;
 // The root finder's most evaluations (regula falsi, Illinois variant: superlinear, bracketed).
@@ -26,6 +30,7 @@ constexpr double kNoDistance = std::numeric_limits<double>::quiet_NaN();
 void ContactStep::findCandidates(SceneBodies& bodies, const std::vector<char>& running, double h) {
   candidates_.clear();
   engaged_.clear();
+  body_points_indexed_ = false;
   std::fill(engagement_.begin(), engagement_.end(), 0);
   std::fill(reserved_.begin(), reserved_.end(), 0);
   // A body that moves far in the step is tested along its whole path against everything near it (the
@@ -113,11 +118,17 @@ bool ContactStep::resolveImpact(SceneBodies& bodies, Candidate c, double h) {
     }
   }
   // At the touch (the bracket's touching end): the points of first contact and the impact.
-  distanceAfter(bodies, c.a, c.b, hi, true);
+  State at[2];
+  distanceAfter(bodies, c.a, c.b, hi, true, at);
   // The patch that meets: every point within the slop of the deepest (a face landing on a face meets at all
   // its corners at once; the narrow phase's perturbed points of a face lie up to ~1e-5 m apart in distance).
+  // Beyond it, the points that may arrive within the rest of the step (arrival: how far a point can close in
+  // it): the rest of a face landing almost flat, whose first corner is the impact.
   const double patch = std::max(kImpactPointTolerance, settings_.penetration_slop);
-  const double deepest = world_->pairDistance(c.a, c.b, std::max(0.0, f_hi) + patch, &pair_points_);
+  const double rest = h - hi;
+  const double arrival = kArrivalSpeedMargin * rest *
+                         (closingSpeedBound(bodies, c.a, at[0]) + closingSpeedBound(bodies, c.b, at[1]));
+  const double deepest = world_->pairDistance(c.a, c.b, std::max(0.0, f_hi) + patch + arrival, &pair_points_);
   solver_contacts_.clear();
   solver_points_.clear();
   solver_anchors_.clear();
@@ -126,7 +137,16 @@ bool ContactStep::resolveImpact(SceneBodies& bodies, Candidate c, double h) {
     if (point.distance <= deepest + patch) addContact(point, bodies);
   }
   chain_groups_.assign(1, {0, solver_contacts_.size()});
-  if (!solver_contacts_.empty() && combined(c.a, c.b).restitution > 0.0) gatherChain(bodies, c, hi);
+  if (!solver_contacts_.empty()) gatherChain(bodies, c, hi);
+  // With restitution the chain's impacts follow each other (solveChain); without, every touching point of
+  // the chain is stopped at once, the arrivals kept from passing the surface with them.
+  const bool sequential = chain_groups_.size() > 1 && combined(c.a, c.b).restitution > 0.0;
+  const std::size_t arrivals = solver_contacts_.size();
+  if (!sequential && arrivals > 0 && rest > 0.0) {
+    for (const ContactPoint& point : pair_points_) {
+      if (point.distance > deepest + patch) addContact(point, bodies);
+    }
+  }
   if (solver_contacts_.empty()) {  // nothing within reach after all: the rest of the step is free motion
     for (std::size_t object : {c.a, c.b}) {
       if (!world_->isBody(object)) continue;
@@ -136,17 +156,24 @@ bool ContactStep::resolveImpact(SceneBodies& bodies, Candidate c, double h) {
     }
     return true;
   }
-  applyImpact(bodies, c, hi, h);
+  applyImpact(bodies, c, hi, h, sequential, arrivals);
   return true;
 }
 
-void ContactStep::applyImpact(SceneBodies& bodies, const Candidate& c, double tau, double h) {
+void ContactStep::applyImpact(SceneBodies& bodies, const Candidate& c, double tau, double h, bool sequential,
+                              std::size_t arrivals) {
   SolveOptions options;
   options.iterations = settings_.iterations;
   options.restitution_threshold = settings_.restitution_threshold;
   const double approach = -solver_contacts_.front().n.dot(relativeVelocity(solver_contacts_.front(), solver_bodies_));
-  if (chain_groups_.size() == 1) {
+  if (!sequential) {
     prepareContacts(solver_contacts_, solver_bodies_, options);
+    // A point still apart by d may close it within the rest of the step, and no faster (a speculative
+    // point's target, kept through both phases of the impact): the rest of the face then reaches the surface
+    // by the step's end instead of passing it by up to a step's travel.
+    for (std::size_t k = arrivals; k < solver_contacts_.size(); ++k) {
+      solver_contacts_[k].target_speed = -solver_contacts_[k].separation / (h - tau);
+    }
     solveImpact(solver_contacts_, solver_bodies_, options);
   } else {
     solveChain(options);
@@ -186,11 +213,12 @@ void ContactStep::gatherChain(SceneBodies& bodies, const Candidate& c, double ta
   for (std::size_t object : {c.a, c.b}) {
     if (world_->isBody(object)) chain_.push_back(object);
   }
+  if (!body_points_indexed_) indexPointsByBody();
   for (std::size_t next = 0; next < chain_.size() && chain_.size() < kMaxChainBodies; ++next) {
     const std::size_t body = chain_[next];
-    for (std::size_t i = 0; i < points_.size(); ++i) {
+    for (std::size_t n = body_point_start_[body]; n < body_point_start_[body + 1]; ++n) {
+      const std::size_t i = body_point_index_[n];
       const ContactPoint& point = points_[i];
-      if (point.a != body && point.b != body) continue;
       if (i > 0 && pairKey(points_[i - 1].a, points_[i - 1].b) == pairKey(point.a, point.b)) continue;
       const std::size_t other = point.a == body ? point.b : point.a;
       const std::uint64_t key = pairKey(point.a, point.b);
@@ -216,6 +244,26 @@ void ContactStep::gatherChain(SceneBodies& bodies, const Candidate& c, double ta
       if (solver_contacts_.size() > begin) chain_groups_.push_back({begin, solver_contacts_.size()});
     }
   }
+}
+
+void ContactStep::indexPointsByBody() {
+  // Counting sort of the points' indices by each body they touch (an environment object is no body).
+  const std::size_t n = colliders_.size();
+  body_point_start_.assign(n + 2, 0);
+  for (const ContactPoint& point : points_) {
+    for (std::size_t object : {point.a, point.b}) {
+      if (world_->isBody(object)) ++body_point_start_[object + 2];
+    }
+  }
+  for (std::size_t k = 2; k < n + 2; ++k) body_point_start_[k] += body_point_start_[k - 1];
+  body_point_index_.resize(body_point_start_[n + 1]);
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    for (std::size_t object : {points_[i].a, points_[i].b}) {
+      if (world_->isBody(object)) body_point_index_[body_point_start_[object + 1]++] = i;
+    }
+  }
+  body_point_start_.pop_back();  // body k's points are [start[k], start[k + 1])
+  body_points_indexed_ = true;
 }
 
 void ContactStep::solveChain(const SolveOptions& options) {
