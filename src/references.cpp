@@ -230,6 +230,17 @@ CollisionShape collisionShape(ShapeType type, const Eigen::Vector3d& size, doubl
   return shape;
 }
 
+MassProperties solidMass(const CollisionShape& shape, double mass) {
+  switch (shape.type) {
+    case ShapeType::kSphere:
+      return MassProperties::sphere(mass, shape.size.x());
+    case ShapeType::kCylinder:
+      return MassProperties::cylinder(mass, shape.size.x(), shape.size.y());
+    default:
+      return MassProperties::box(mass, shape.size);
+  }
+}
+
 BodyDefinition contactBody(const MassProperties& mass, const Eigen::Vector3d& p_WB, const Eigen::Quaterniond& q_WB,
                            const Eigen::Vector3d& v_WB_W, const Eigen::Vector3d& w_WB_B, const Eigen::Vector3d& gravity_W) {
   BodyDefinition body;

@@ -126,6 +126,9 @@ CollisionShape groundPlane(const Eigen::Vector3d& normal, double friction, doubl
 /// A collision shape of `type` and `size` (see ShapeType) with friction μ and restitution e.
 CollisionShape collisionShape(ShapeType type, const Eigen::Vector3d& size, double friction, double restitution);
 
+/// The mass properties of a solid box, sphere or cylinder of `mass` with the shape's size (others: its box).
+MassProperties solidMass(const CollisionShape& shape, double mass);
+
 /// A body without wrench input at p_WB, turned by q_WB, moving at v_WB_W and turning at w_WB_B, under gravity.
 BodyDefinition contactBody(const MassProperties& mass, const Eigen::Vector3d& p_WB, const Eigen::Quaterniond& q_WB,
                            const Eigen::Vector3d& v_WB_W, const Eigen::Vector3d& w_WB_B, const Eigen::Vector3d& gravity_W);

@@ -1,7 +1,10 @@
 #include "contact_solver.hpp"
 
+#include "sticking_solve.hpp"
+
 #include <Eigen/LU>
 #include <algorithm>
+#include <limits>
 #include <cmath>
 
 #include "friction_disc.hpp"
@@ -248,7 +251,19 @@ void solveImpact(std::vector<SolverContact>& contacts, std::vector<SolverBody>& 
     restitution[k] = contacts[k].target_speed > 0.0 ? contacts[k].restitution : 0.0;
     contacts[k].target_speed = std::min(0.0, contacts[k].target_speed);
   }
-  solveVelocities(contacts, bodies, options);
+  if (!solveVelocities(contacts, bodies, options)) {
+    // Sweeps that run out before every point stops (a heavy body striking a light one that lies on the
+    // ground: each sweep carries the light body's share of the momentum) left the light one going on into
+    // what it lies on for the rest of the step. Stopping every point is the compression's aim, so the rows
+    // solved at once as equalities give it wherever every point then pushes and holds within its disc
+    // (sticking_solve.hpp; a point still apart keeps its target); else the sweeps' result stands.
+    StickingScratch scratch;
+    const SolveRange all = SolveRange::all(contacts.size(), bodies.size());
+    const double no_sliding_limit = std::numeric_limits<double>::infinity();
+    if (solveStickingIsland(contacts, bodies, all, 0.0, no_sliding_limit, scratch) == StickingOutcome::kSolved) {
+      sumImpulses(contacts, bodies, all);
+    }
+  }
   compressed.take(bodies);
   double a = 0.0, b = 0.0;
   energyTerms(before, compressed, a, b);

@@ -161,6 +161,8 @@ class ContactStep {
                    std::size_t arrivals);
   void gatherChain(SceneBodies& bodies, const Candidate& candidate, double tau);
   void indexPointsByBody();
+  /// The fastest approach of any point of the chain now [m/s] (0 if none approaches), and its group.
+  double fastestApproach(std::size_t& group) const;
   void solveChain(const SolveOptions& options);
   static constexpr std::size_t kMaxChainBodies = 64;  // bodies an impact's chain reaches at most
   static constexpr std::size_t kMaxChainImpacts = 16; // pairwise impacts per pair of a chain at most

@@ -23,21 +23,11 @@ const Eigen::Vector3d kZero = Eigen::Vector3d::Zero();
 
 using reference::collisionShape;
 using reference::groundPlane;
+using reference::solidMass;
 using reference::mechanicalEnergy;
 
 BodyDefinition resting(const MassProperties& mass, const Eigen::Vector3d& p, const Eigen::Vector3d& v = kZero) {
   return reference::contactBody(mass, p, Eigen::Quaterniond::Identity(), v, kZero, kDown);
-}
-
-MassProperties massOf(const CollisionShape& shape, double mass) {
-  switch (shape.type) {
-    case ShapeType::kSphere:
-      return MassProperties::sphere(mass, shape.size.x());
-    case ShapeType::kCylinder:
-      return MassProperties::cylinder(mass, shape.size.x(), shape.size.y());
-    default:
-      return MassProperties::box(mass, shape.size);
-  }
 }
 
 // A solver body's kinetic energy, ½ M v² + ½ ωᵀ I ω.
@@ -76,7 +66,7 @@ TEST(WarmStarts, AHeavyBodyLandingOnALightOneNeverGainsEnergy) {
               upper.material.restitution = lower.material.restitution = e;
               setup.bodies = {lower, upper};
               const double lower_top = lower.type == ShapeType::kSphere ? 2.0 * lower.size.x() : lower.size.z();
-              const MassProperties light = massOf(lower, 0.01), heavy = massOf(upper, 0.01 * ratio);
+              const MassProperties light = solidMass(lower, 0.01), heavy = solidMass(upper, 0.01 * ratio);
               const Eigen::Vector3d drop(0.02, -0.01, lower_top + 0.4), axis = Eigen::Vector3d(1, 0.4, 0).normalized();
               BodyDefinition falling = resting(heavy, drop, Eigen::Vector3d(0.3, 0, -3));
               falling.initial.q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(tilt, axis));
