@@ -3,6 +3,7 @@
 #include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/special_functions/ellint_1.hpp>
 #include <boost/math/special_functions/jacobi_elliptic.hpp>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -238,6 +239,22 @@ MassProperties solidMass(const CollisionShape& shape, double mass) {
       return MassProperties::cylinder(mass, shape.size.x(), shape.size.y());
     default:
       return MassProperties::box(mass, shape.size);
+  }
+}
+
+double depthBelowGround(const State& state, const CollisionShape& shape) {
+  const Eigen::Matrix3d R = state.q_WB.toRotationMatrix();
+  const double z = state.p_WB.z(), axis_z = std::abs(R(2, 2)), half = 0.5 * shape.size.y();
+  switch (shape.type) {
+    case ShapeType::kSphere:
+      return shape.size.x() - z;
+    case ShapeType::kCapsule:
+      return half * axis_z + shape.size.x() - z;
+    case ShapeType::kCylinder:  // its rim: the axis's half length and the radius across it
+      return half * axis_z + shape.size.x() * std::sqrt(std::max(0.0, 1.0 - axis_z * axis_z)) - z;
+    default:  // a box: its lowest corner, Σ |R(2, i)| size_i / 2 below the centre
+      return 0.5 * (std::abs(R(2, 0)) * shape.size.x() + std::abs(R(2, 1)) * shape.size.y() +
+                    std::abs(R(2, 2)) * shape.size.z()) - z;
   }
 }
 

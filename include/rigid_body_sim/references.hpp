@@ -129,6 +129,10 @@ CollisionShape collisionShape(ShapeType type, const Eigen::Vector3d& size, doubl
 /// The mass properties of a solid box, sphere or cylinder of `mass` with the shape's size (others: its box).
 MassProperties solidMass(const CollisionShape& shape, double mass);
 
+/// How far the lowest point of a box, sphere, cylinder or capsule (axis z of its frame) at `state` is below the
+/// ground z = 0 [m] (≤ 0 when it is above).
+double depthBelowGround(const State& state, const CollisionShape& shape);
+
 /// A body without wrench input at p_WB, turned by q_WB, moving at v_WB_W and turning at w_WB_B, under gravity.
 BodyDefinition contactBody(const MassProperties& mass, const Eigen::Vector3d& p_WB, const Eigen::Quaterniond& q_WB,
                            const Eigen::Vector3d& v_WB_W, const Eigen::Vector3d& w_WB_B, const Eigen::Vector3d& gravity_W);

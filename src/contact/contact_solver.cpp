@@ -1,14 +1,13 @@
 #include "contact_solver.hpp"
 
-#include "sticking_solve.hpp"
-
 #include <Eigen/LU>
 #include <algorithm>
-#include <limits>
 #include <cmath>
+#include <limits>
 
 #include "friction_disc.hpp"
 #include "joint_normals.hpp"
+#include "sticking_solve.hpp"
 
 namespace rigid_body {
 namespace contact {

@@ -155,10 +155,10 @@ class ContactStep {
   void findCandidates(SceneBodies& bodies, const std::vector<char>& running, double h);
   bool resolveImpact(SceneBodies& bodies, Candidate candidate, double h);
   /// The impact law at τ on the solver lists: the chain's impacts one after another if `sequential`, else
-  /// every contact at once, those from `arrivals` on still apart (they may close their gap within the rest of
-  /// the step); then the rest of the step for the impact's bodies.
+  /// every contact at once, those from `first_arrival` on still apart (they may close their gap within the
+  /// rest of the step); then the rest of the step for the impact's bodies.
   void applyImpact(SceneBodies& bodies, const Candidate& candidate, double tau, double h, bool sequential,
-                   std::size_t arrivals);
+                   std::size_t first_arrival);
   void gatherChain(SceneBodies& bodies, const Candidate& candidate, double tau);
   void indexPointsByBody();
   /// The fastest approach of any point of the chain now [m/s] (0 if none approaches), and its group.

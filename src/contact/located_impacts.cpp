@@ -141,8 +141,8 @@ bool ContactStep::resolveImpact(SceneBodies& bodies, Candidate c, double h) {
   // With restitution the chain's impacts follow each other (solveChain); without, every touching point of
   // the chain is stopped at once, the arrivals kept from passing the surface with them.
   const bool sequential = chain_groups_.size() > 1 && combined(c.a, c.b).restitution > 0.0;
-  const std::size_t arrivals = solver_contacts_.size();
-  if (!sequential && arrivals > 0 && rest > 0.0) {
+  const std::size_t first_arrival = solver_contacts_.size();
+  if (!sequential && first_arrival > 0 && rest > 0.0) {
     for (const ContactPoint& point : pair_points_) {
       if (point.distance > deepest + patch) addContact(point, bodies);
     }
@@ -156,12 +156,12 @@ bool ContactStep::resolveImpact(SceneBodies& bodies, Candidate c, double h) {
     }
     return true;
   }
-  applyImpact(bodies, c, hi, h, sequential, arrivals);
+  applyImpact(bodies, c, hi, h, sequential, first_arrival);
   return true;
 }
 
 void ContactStep::applyImpact(SceneBodies& bodies, const Candidate& c, double tau, double h, bool sequential,
-                              std::size_t arrivals) {
+                              std::size_t first_arrival) {
   SolveOptions options;
   options.iterations = settings_.iterations;
   options.restitution_threshold = settings_.restitution_threshold;
@@ -171,7 +171,7 @@ void ContactStep::applyImpact(SceneBodies& bodies, const Candidate& c, double ta
     // A point still apart by d may close it within the rest of the step, and no faster (a speculative
     // point's target, kept through both phases of the impact): the rest of the face then reaches the surface
     // by the step's end instead of passing it by up to a step's travel.
-    for (std::size_t k = arrivals; k < solver_contacts_.size(); ++k) {
+    for (std::size_t k = first_arrival; k < solver_contacts_.size(); ++k) {
       solver_contacts_[k].target_speed = -solver_contacts_[k].separation / (h - tau);
     }
     solveImpact(solver_contacts_, solver_bodies_, options);
@@ -291,12 +291,10 @@ void ContactStep::solveChain(const SolveOptions& options) {
       chain_dL_[s] += solver_bodies_[s].dL;
     }
   };
-  bool approaching = true;
   for (std::size_t round = 0; round < most; ++round) {
     std::size_t fastest = 0;
     const double approach = fastestApproach(fastest);
-    approaching = approach > options.restitution_threshold;
-    if (round > 0 && !approaching) break;
+    if (round > 0 && !(approach > options.restitution_threshold)) break;
     if (round == 0) fastest = 0;  // the located pair itself, whatever its speed
     chain_contacts_.assign(solver_contacts_.begin() + static_cast<std::ptrdiff_t>(chain_groups_[fastest].first),
                            solver_contacts_.begin() + static_cast<std::ptrdiff_t>(chain_groups_[fastest].second));
@@ -310,7 +308,7 @@ void ContactStep::solveChain(const SolveOptions& options) {
   // the whole chain's at once (the impact law over all its points, each its own restitution), so that no
   // pair goes on approaching into the rest of the step.
   std::size_t fastest = 0;
-  if (approaching && fastestApproach(fastest) > options.restitution_threshold) {
+  if (fastestApproach(fastest) > options.restitution_threshold) {
     for (SolverContact& contact : solver_contacts_) contact.normal_impulse = 0.0, contact.friction_impulse.setZero();
     prepareContacts(solver_contacts_, solver_bodies_, options);
     solveImpact(solver_contacts_, solver_bodies_, options);

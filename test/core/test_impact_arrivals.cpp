@@ -26,21 +26,9 @@ const Eigen::Vector3d kZero = Eigen::Vector3d::Zero();
 const double kSlop = ContactSettings().penetration_slop;
 
 using reference::collisionShape;
+using reference::depthBelowGround;
 using reference::groundPlane;
 using reference::solidMass;
-
-// How far the shape's lowest point is below the ground z = 0 (≤ 0 above it): a box's lowest corner, a
-// cylinder's lowest rim point (axis z of its frame).
-double depth(const State& state, const CollisionShape& shape) {
-  const Eigen::Matrix3d R = state.q_WB.toRotationMatrix();
-  if (shape.type == ShapeType::kCylinder) {
-    const double axis_z = std::abs(R(2, 2));
-    return 0.5 * shape.size.y() * axis_z + shape.size.x() * std::sqrt(std::max(0.0, 1.0 - axis_z * axis_z)) -
-           state.p_WB.z();
-  }
-  return 0.5 * (std::abs(R(2, 0)) * shape.size.x() + std::abs(R(2, 1)) * shape.size.y() +
-                std::abs(R(2, 2)) * shape.size.z()) - state.p_WB.z();
-}
 
 // Half the extent of the shape along z in its own frame: where its centre stands above a face it lies on.
 double halfHeight(const CollisionShape& shape) {
@@ -75,7 +63,7 @@ TEST(ImpactArrivals, AFaceLandingAlmostFlatNeverGoesDeeperThanARestingContact) {
               // Its lowest point a step's travel and a half above the ground: the impact comes within a step.
               State start;
               start.q_WB = q;
-              const double reach_down = depth(start, shape);  // its lowest point below its centre
+              const double reach_down = depthBelowGround(start, shape);  // its lowest point below its centre
               const Eigen::Vector3d p(0.0, 0.0, reach_down + 1.5 * speed * h);
               const BodyDefinition body =
                   reference::contactBody(solidMass(shape, 2.0), p, q, Eigen::Vector3d(0, 0, -speed), kZero, kDown);
@@ -83,7 +71,7 @@ TEST(ImpactArrivals, AFaceLandingAlmostFlatNeverGoesDeeperThanARestingContact) {
               double deepest = 0.0;
               for (int step = 0; step < static_cast<int>(0.3 / h); ++step) {
                 scene.step(1);
-                deepest = std::max(deepest, depth(scene.state(0), shape));
+                deepest = std::max(deepest, depthBelowGround(scene.state(0), shape));
               }
               const std::string what = "shape " + std::to_string(static_cast<int>(shape.type)) + " size " +
                                        std::to_string(shape.size.x()) + ", e " + std::to_string(restitution) +
@@ -139,7 +127,7 @@ TEST(ImpactArrivals, AHeavyBodyLandingOnALightOneLyingOnTheGroundDoesNotDriveItI
             double deepest = 0.0, sunk = 0.0;
             for (int step = 0; step < static_cast<int>(0.5 / h); ++step) {
               scene.step(1);
-              deepest = std::max(deepest, depth(scene.state(0), light));
+              deepest = std::max(deepest, depthBelowGround(scene.state(0), light));
               // How far the heavy body's lower face went below the light one's top face (both stay level).
               sunk = std::max(sunk, scene.state(0).p_WB.z() + light_z - (scene.state(1).p_WB.z() - halfHeight(heavy)));
             }

@@ -105,23 +105,6 @@ Heap randomHeap(std::mt19937& random) {
   return heap;
 }
 
-// How far the body's lowest point is below the ground (z = 0), ≤ 0 when it is above.
-double depthBelowGround(const State& state, const CollisionShape& shape) {
-  const Eigen::Matrix3d R = state.q_WB.toRotationMatrix();
-  const double z = state.p_WB.z(), axis_z = std::abs(R(2, 2)), half = 0.5 * shape.size.y();
-  switch (shape.type) {
-    case ShapeType::kSphere:
-      return shape.size.x() - z;
-    case ShapeType::kCapsule:
-      return half * axis_z + shape.size.x() - z;
-    case ShapeType::kCylinder:
-      return half * axis_z + shape.size.x() * std::sqrt(std::max(0.0, 1.0 - axis_z * axis_z)) - z;
-    default:  // a box: its lowest corner, Σ |R(2, i)| size_i / 2 below the centre
-      return 0.5 * (std::abs(R(2, 0)) * shape.size.x() + std::abs(R(2, 1)) * shape.size.y() +
-                    std::abs(R(2, 2)) * shape.size.z()) - z;
-  }
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -155,7 +138,7 @@ int main(int argc, char** argv) {
       finite = std::isfinite(energy);
       most = std::max(most, energy);
       for (std::size_t b = 0; b < heap.bodies.size(); ++b) {
-        deepest = std::max(deepest, depthBelowGround(scene.state(b), *heap.setup.bodies[b]));
+        deepest = std::max(deepest, reference::depthBelowGround(scene.state(b), *heap.setup.bodies[b]));
       }
     }
     const bool found = !finite || most - start > allowance;
